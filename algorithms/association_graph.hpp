@@ -1,0 +1,52 @@
+#pragma once
+// The gating graph of a single-scan problem: the bipartite graph of eq (9) restricted to the
+// pairs with ψ_i(j) > 0 (after an optional threshold), in compressed sparse rows, with its
+// connected components (clusters). Shared by the algorithms that exploit gating sparsity.
+#include <vector>
+
+#include "harness/single_scan_problem.hpp"
+
+namespace dabench {
+
+class AssociationGraph {
+ public:
+  // Rebuilds from `problem` using normalised weights ψ_i(j) = w_ij / (w_i0 w_0j); weights
+  // below `threshold` are treated as zero. Reuses storage: no allocation once grown.
+  void build(const SingleScanProblem& problem, double threshold = 0.0);
+  // Computes the clusters of the last build() (union-find over targets and measurements).
+  void find_clusters();
+
+  int targets() const { return targets_; }
+  int measurements() const { return measurements_; }
+  int edges() const { return static_cast<int>(edge_measurement_.size()); }
+
+  // Edges of target i are [row_begin(i), row_begin(i+1)), ordered by measurement index.
+  int row_begin(int i) const { return row_start_[i]; }
+  int row_end(int i) const { return row_start_[i + 1]; }
+  int edge_measurement(int e) const { return edge_measurement_[e]; }  // 0-based measurement
+  double edge_weight(int e) const { return edge_weight_[e]; }
+  int measurement_degree(int j) const { return measurement_degree_[j]; }
+
+  // Clusters (after find_clusters()): connected components over targets and measurements. Targets of cluster c are
+  // cluster_targets()[cluster_start(c) .. cluster_start(c+1)), in increasing index order.
+  // Each target is in exactly one cluster (an isolated target forms its own).
+  int clusters() const { return static_cast<int>(cluster_start_.size()) - 1; }
+  int cluster_start(int c) const { return cluster_start_[c]; }
+  const std::vector<int>& cluster_targets() const { return cluster_targets_; }
+
+ private:
+  int find_root(int node);
+  int targets_ = 0;
+  int measurements_ = 0;
+  std::vector<int> row_start_;
+  std::vector<int> edge_measurement_;
+  std::vector<double> edge_weight_;
+  std::vector<int> measurement_degree_;
+  std::vector<int> parent_;  // union-find over targets (0..n-1) and measurements (n..n+m-1)
+  std::vector<int> cluster_of_root_;
+  std::vector<int> next_slot_;
+  std::vector<int> cluster_start_;
+  std::vector<int> cluster_targets_;
+};
+
+}  // namespace dabench

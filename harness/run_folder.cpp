@@ -1,0 +1,93 @@
+#include "harness/run_folder.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "harness/errors.hpp"
+
+namespace dabench {
+
+namespace fs = std::filesystem;
+
+std::string trials_path(const RunPlan& plan) { return (fs::path(plan.output) / "trials.csv").string(); }
+std::string summary_path(const RunPlan& plan) { return (fs::path(plan.output) / "summary.csv").string(); }
+std::string meta_path(const RunPlan& plan) { return (fs::path(plan.output) / "meta.json").string(); }
+
+namespace {
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+// The run fingerprint stored in meta.json, or "" if absent.
+std::string stored_fingerprint(const std::string& meta) {
+  const std::string key = "\"fingerprint\": \"";
+  const auto at = meta.find(key);
+  if (at == std::string::npos) return {};
+  const auto end = meta.find('"', at + key.size());
+  return end == std::string::npos ? std::string() : meta.substr(at + key.size(), end - at - key.size());
+}
+
+std::FILE* open_or_throw(const std::string& path, const char* mode) {
+  std::FILE* file = std::fopen(path.c_str(), mode);
+  if (file == nullptr) throw InputError(fmt::format("{}: cannot open for writing", path));
+  return file;
+}
+
+}  // namespace
+
+OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force) {
+  const std::string trials = trials_path(plan);
+  const std::string meta = meta_path(plan);
+  const bool holds_run = fs::exists(trials) || fs::exists(meta);
+  if (holds_run && !resume && !force) {
+    throw InputError(fmt::format("{}: already holds a run; use --resume to finish it or --force to start over",
+                                 plan.output));
+  }
+  std::error_code error;
+  fs::create_directories(plan.output, error);
+  if (error) throw InputError(fmt::format("{}: cannot create output folder ({})", plan.output, error.message()));
+
+  const std::string header = plan.trials_header();
+  OpenedTrials opened;
+  if (resume && holds_run) {
+    if (stored_fingerprint(read_all(meta)) != plan.fingerprint()) {
+      throw InputError(fmt::format("{}: cannot resume: the run there used a different experiment, seed, trials or "
+                                   "algorithms (use --force to start over)", plan.output));
+    }
+    const std::string text = read_all(trials);
+    if (text.compare(0, header.size(), header) == 0) {
+      // Keep whole items only: every item has one row per algorithm.
+      const long long rows_per_item = static_cast<long long>(plan.specs.size());
+      long long complete_lines = 0;
+      std::size_t end_of_items = header.size();
+      for (std::size_t at = header.size(); at < text.size(); ++at) {
+        if (text[at] != '\n') continue;
+        if (++complete_lines % rows_per_item == 0) end_of_items = at + 1;
+      }
+      opened.items_done = std::min(complete_lines / rows_per_item, plan.items());
+      fs::resize_file(trials, end_of_items, error);
+      if (error) throw InputError(fmt::format("{}: cannot trim partial rows ({})", trials, error.message()));
+      opened.file = open_or_throw(trials, "ab");
+      opened.resumed = true;
+      return opened;
+    }
+    if (!text.empty()) {
+      throw InputError(fmt::format("{}: header differs from this experiment's; use --force to start over", trials));
+    }
+  }
+  fs::remove(fs::path(plan.output) / "summary.csv", error);
+  opened.file = open_or_throw(trials, "wb");
+  if (std::fputs(header.c_str(), opened.file) < 0 || std::fflush(opened.file) != 0) {
+    throw InputError(fmt::format("{}: write failed", trials));
+  }
+  return opened;
+}
+
+}  // namespace dabench

@@ -1,0 +1,23 @@
+#pragma once
+// The output folder of a run: refuses to mix runs, and prepares trials.csv for a fresh start
+// (--force or a new folder) or for --resume (keeps the whole items already written).
+#include <cstdio>
+#include <string>
+
+#include "harness/run_plan.hpp"
+
+namespace dabench {
+
+struct OpenedTrials {
+  std::FILE* file = nullptr;     // positioned at the end, ready for appending
+  long long items_done = 0;      // whole items already in the file
+  bool resumed = false;
+};
+
+OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force);  // throws InputError
+
+std::string trials_path(const RunPlan& plan);
+std::string summary_path(const RunPlan& plan);
+std::string meta_path(const RunPlan& plan);
+
+}  // namespace dabench

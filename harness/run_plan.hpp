@@ -1,0 +1,31 @@
+#pragma once
+// A fully checked experiment: the resolved parameters of every sweep point and the algorithm
+// SPECs to run, built before any output is written.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "harness/experiment.hpp"
+#include "harness/runner.hpp"
+
+namespace dabench {
+
+struct RunPlan {
+  Experiment experiment;
+  std::vector<std::vector<KeyValue>> point_settings;  // as written (fixed + swept)
+  std::vector<std::vector<KeyValue>> point_params;    // every scenario parameter, effective value
+  std::vector<std::string> specs;                     // reference (if any) first, then algorithms
+  bool has_reference = false;
+  std::int64_t trials = 0;
+  std::uint64_t seed = 0;
+  int threads = 1;
+  std::string output;
+
+  long long items() const { return static_cast<long long>(point_params.size()) * trials; }
+  std::string trials_header() const;
+  std::string fingerprint() const;  // identifies the run for --resume
+};
+
+RunPlan make_run_plan(const RunOptions& options);  // throws InputError
+
+}  // namespace dabench

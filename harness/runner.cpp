@@ -1,0 +1,263 @@
+#include "harness/runner.hpp"
+
+#include <omp.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cmath>
+#include <ctime>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "harness/atomic_file.hpp"
+#include "harness/build_info.hpp"
+#include "harness/csv.hpp"
+#include "harness/errors.hpp"
+#include "harness/json.hpp"
+#include "harness/marginal_errors.hpp"
+#include "harness/ordered_writer.hpp"
+#include "harness/progress.hpp"
+#include "harness/registry.hpp"
+#include "harness/run_folder.hpp"
+#include "harness/run_plan.hpp"
+#include "harness/summary.hpp"
+
+namespace dabench {
+
+const std::vector<std::string>& single_scan_metric_columns() {
+  static const std::vector<std::string> columns = {"n_targets", "n_measurements", "max_error", "mean_error",
+                                                   "time_us",   "iterations",     "converged", "w_star"};
+  return columns;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_interrupt(int) { g_interrupted = 1; }
+
+// Items are handed to threads in blocks: large enough that scheduling and the ordered write
+// cost little, small enough that an interrupted run loses little.
+constexpr long long kItemsPerBlock = 8;
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm parts{};
+  gmtime_r(&now, &parts);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &parts);
+  return text;
+}
+
+std::string host_name() {
+  char name[256] = {};
+  return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string("unknown");
+}
+
+void append_number(std::string& row, double value) {
+  row += ',';
+  if (std::isfinite(value)) fmt::format_to(std::back_inserter(row), "{}", value);
+}
+
+// One thread's solvers and buffers, reused for every item it runs.
+struct Worker {
+  std::vector<std::unique_ptr<SingleScanSolver>> solvers;
+  std::vector<MarginalTable> marginals;
+  std::vector<SolveReport> reports;
+  std::vector<double> time_us;
+  ScenarioSample sample;
+  std::string rows;
+  double busy_seconds = 0.0;
+};
+
+class Execution {
+ public:
+  Execution(const RunPlan& plan, std::vector<std::unique_ptr<SingleScanScenario>> scenarios)
+      : plan_(plan), scenarios_(std::move(scenarios)) {
+    for (std::size_t p = 0; p < plan.point_params.size(); ++p) {
+      std::string prefix = std::to_string(p);
+      for (const KeyValue& kv : plan.point_params[p]) {
+        prefix += ',';
+        append_csv_field(prefix, kv.value);
+      }
+      point_prefix_.push_back(std::move(prefix));
+    }
+    for (const std::string& spec : plan.specs) {
+      std::string field;
+      append_csv_field(field, spec);
+      spec_field_.push_back(std::move(field));
+    }
+  }
+
+  void run_item(Worker& worker, long long item) const {
+    const auto point = static_cast<std::uint32_t>(item / plan_.trials);
+    const auto trial = static_cast<std::uint32_t>(item % plan_.trials);
+    const auto start = Clock::now();
+    RandomStream rng(plan_.seed, point, trial);
+    scenarios_[point]->generate(rng, worker.sample);
+    const SingleScanProblem& problem = worker.sample.problem;
+    const std::size_t count = worker.solvers.size();
+    for (std::size_t a = 0; a < count; ++a) {
+      SolveReport& report = worker.reports[a];
+      const auto t0 = Clock::now();
+      try {
+        worker.solvers[a]->solve(problem, worker.marginals[a], report);
+      } catch (const std::exception& error) {  // e.g. std::bad_alloc: record it, go on
+        report.skipped = std::string("failed:") + error.what();
+      }
+      worker.time_us[a] = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+    }
+    worker.busy_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+
+    const bool reference_ok = plan_.has_reference && worker.reports[0].skipped.empty();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t a = 0; a < count; ++a) {
+      const SolveReport& report = worker.reports[a];
+      std::string& row = worker.rows;
+      fmt::format_to(std::back_inserter(row), "{},{},{},{},", point_prefix_[point], trial, plan_.seed, spec_field_[a]);
+      const bool ok = report.skipped.empty();
+      if (ok) {
+        row += "ok";
+      } else if (report.skipped.rfind("failed:", 0) == 0) {
+        append_csv_field(row, report.skipped);
+      } else {
+        append_csv_field(row, "skipped:" + report.skipped);
+      }
+      fmt::format_to(std::back_inserter(row), ",{},{}", problem.targets(), problem.measurements());
+      MarginalErrors errors{nan, nan};
+      if (ok && reference_ok && problem.targets() > 0) errors = marginal_errors(worker.marginals[a], worker.marginals[0]);
+      append_number(row, errors.max_error);
+      append_number(row, errors.mean_error);
+      append_number(row, worker.time_us[a]);
+      append_number(row, ok ? report.iterations : nan);
+      append_number(row, ok ? (report.converged ? 1.0 : 0.0) : nan);
+      append_number(row, report.w_star);
+      row += '\n';
+    }
+  }
+
+  Worker make_worker() const {
+    Worker worker;
+    for (const std::string& spec : plan_.specs) worker.solvers.push_back(make_single_scan_solver(spec));
+    worker.marginals.resize(plan_.specs.size());
+    worker.reports.resize(plan_.specs.size());
+    worker.time_us.resize(plan_.specs.size());
+    return worker;
+  }
+
+ private:
+  const RunPlan& plan_;
+  std::vector<std::unique_ptr<SingleScanScenario>> scenarios_;
+  std::vector<std::string> point_prefix_;
+  std::vector<std::string> spec_field_;
+};
+
+std::string meta_json(const RunPlan& plan, const RunOptions& options, const std::string& started,
+                      const std::string& status, long long items_done, double wall_seconds, double work_fraction,
+                      bool resumed) {
+  const BuildInfo& build = build_info();
+  std::string specs = "[";
+  for (std::size_t a = 0; a < plan.specs.size(); ++a) specs += (a ? ", " : "") + JsonObject::quote(plan.specs[a]);
+  specs += "]";
+  JsonObject meta;
+  meta.add("schema", "dabench-run-1")
+      .add("status", status)
+      .add("fingerprint", plan.fingerprint())
+      .add("command_line", options.command_line)
+      .add("experiment_path", plan.experiment.path)
+      .add("experiment_name", plan.experiment.name)
+      .add("experiment", plan.experiment.text)
+      .add("scenario", plan.experiment.scenario)
+      .add("seed", static_cast<long long>(plan.seed))
+      .add("trials_per_point", static_cast<long long>(plan.trials))
+      .add("points", static_cast<long long>(plan.point_params.size()))
+      .add("items_total", plan.items())
+      .add("items_done", items_done)
+      .add_raw("algorithms", specs)
+      .add("reference", plan.has_reference ? plan.specs.front() : std::string())
+      .add("git_commit", build.git_commit)
+      .add("compiler", build.compiler)
+      .add("flags", build.flags)
+      .add("build_type", build.build_type)
+      .add("threads", static_cast<long long>(plan.threads))
+      .add("processes", 1LL)
+      .add("host", host_name())
+      .add("resumed", resumed)
+      .add("start_time", started)
+      .add("end_time", status == "running" ? std::string() : utc_now())
+      .add("wall_seconds", wall_seconds)
+      .add("work_fraction", work_fraction);
+  return meta.str();
+}
+
+}  // namespace
+
+RunOutcome run_experiment(const RunOptions& options) {
+  const RunPlan plan = make_run_plan(options);
+  std::vector<std::unique_ptr<SingleScanScenario>> scenarios;
+  const auto* scenario_entry = scenario_registry().find(plan.experiment.scenario);
+  for (const auto& settings : plan.point_settings) scenarios.push_back(scenario_entry->create(settings));
+
+  OpenedTrials opened = open_trials_file(plan, options.resume, options.force);
+  const std::string started = utc_now();
+  write_file_atomically(meta_path(plan), meta_json(plan, options, started, "running", opened.items_done, 0.0,
+                                                   std::nan(""), opened.resumed));
+
+  const long long total_items = plan.items();
+  const long long first_block = opened.items_done / kItemsPerBlock;
+  const long long total_blocks = (total_items + kItemsPerBlock - 1) / kItemsPerBlock;
+  // Resume points are whole items; realign so block boundaries stay item multiples.
+  const long long skip_in_first = opened.items_done - first_block * kItemsPerBlock;
+  OrderedWriter writer(opened.file, first_block);
+  ProgressLine progress(total_items, opened.items_done, stderr_is_terminal());
+  const Execution execution(plan, std::move(scenarios));
+
+  g_interrupted = 0;
+  auto previous_int = std::signal(SIGINT, on_interrupt);
+  auto previous_term = std::signal(SIGTERM, on_interrupt);
+  const auto wall_start = Clock::now();
+  double busy_seconds = 0.0;
+  std::atomic<long long> items_finished{opened.items_done};
+
+#pragma omp parallel num_threads(plan.threads) reduction(+ : busy_seconds)
+  {
+    Worker worker = execution.make_worker();
+#pragma omp for schedule(dynamic, 1)
+    for (long long block = first_block; block < total_blocks; ++block) {
+      if (g_interrupted) continue;
+      const long long begin = block * kItemsPerBlock + (block == first_block ? skip_in_first : 0);
+      const long long end = std::min(total_items, (block + 1) * kItemsPerBlock);
+      worker.rows.clear();
+      for (long long item = begin; item < end; ++item) execution.run_item(worker, item);
+      const long long blocks_written = writer.submit(block, std::move(worker.rows));
+      worker.rows = std::string();
+      items_finished += end - begin;
+      if (omp_get_thread_num() == 0 || blocks_written == total_blocks) progress.update(items_finished.load());
+    }
+    busy_seconds += worker.busy_seconds;
+  }
+  std::signal(SIGINT, previous_int);
+  std::signal(SIGTERM, previous_term);
+  progress.finish();
+  const double wall_seconds = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  std::fclose(opened.file);
+  if (writer.failed()) throw InputError(fmt::format("{}: write failed (disk full?)", trials_path(plan)));
+
+  RunOutcome outcome;
+  outcome.items_total = total_items;
+  outcome.items_written = std::min(total_items, writer.next_block() * kItemsPerBlock);
+  outcome.interrupted = outcome.items_written < total_items;
+  outcome.output = plan.output;
+  const double work_fraction = wall_seconds > 0.0 ? busy_seconds / (wall_seconds * plan.threads) : std::nan("");
+  if (!outcome.interrupted) write_summary(trials_path(plan), summary_path(plan), single_scan_metric_columns());
+  write_file_atomically(meta_path(plan),
+                        meta_json(plan, options, started, outcome.interrupted ? "interrupted" : "complete",
+                                  outcome.items_written, wall_seconds, work_fraction, opened.resumed));
+  return outcome;
+}
+
+}  // namespace dabench

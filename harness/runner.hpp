@@ -1,0 +1,41 @@
+#pragma once
+// `dabench run`: turns an experiment into work items (point, trial), runs them on OpenMP
+// threads, and writes trials.csv (in item order, as items finish), summary.csv and meta.json.
+//
+// Every item draws its scenario from its own counter-based stream (seed, point, trial) and
+// runs the reference and every algorithm on that same draw, so rows are bit-identical (timings
+// aside) for any thread count or resume history. Everything that can be wrong with the
+// experiment (scenario, parameters of every point, algorithm SPECs, output folder) is checked
+// before the first trial runs.
+#include <cstdint>
+#include <optional>
+#include <vector>
+#include <string>
+
+namespace dabench {
+
+struct RunOptions {
+  std::string experiment_path;
+  std::optional<std::int64_t> trials;   // overrides the file's `trials`
+  std::optional<int> threads;           // default: OpenMP's default (all cores)
+  std::optional<std::uint64_t> seed;    // overrides the file's `seed`
+  std::optional<std::string> output;    // overrides the file's `output`
+  bool resume = false;                  // finish the run in the output folder
+  bool force = false;                   // discard the run in the output folder
+  std::string command_line;             // recorded in meta.json
+};
+
+struct RunOutcome {
+  long long items_total = 0;
+  long long items_written = 0;
+  bool interrupted = false;
+  std::string output;
+};
+
+// Throws InputError for anything wrong before the run starts.
+RunOutcome run_experiment(const RunOptions& options);
+
+// Column names of the single-scan metrics in trials.csv, in order.
+const std::vector<std::string>& single_scan_metric_columns();
+
+}  // namespace dabench

@@ -1,0 +1,24 @@
+#pragma once
+// summary.csv: one row per (point, algorithm) with, for each metric, the count of non-missing
+// values, mean, standard error (sd/√count, sd with n−1), median and 5th/95th percentiles
+// (linear interpolation between order statistics, "type 7"). Computed from trials.csv after
+// every run, so a resumed run summarises exactly what an uninterrupted one would.
+#include <string>
+#include <vector>
+
+namespace dabench {
+
+struct MetricSummary {
+  long long count = 0;
+  double mean = 0.0, standard_error = 0.0, median = 0.0, p5 = 0.0, p95 = 0.0;  // NaN if count = 0
+};
+
+// Sorts `values` (non-missing only) in place.
+MetricSummary summarize(std::vector<double>& values);
+double percentile_sorted(const std::vector<double>& sorted, double fraction);
+
+// Throws InputError if trials.csv is unreadable or malformed.
+void write_summary(const std::string& trials_path, const std::string& summary_path,
+                   const std::vector<std::string>& metric_columns);
+
+}  // namespace dabench

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs every build, test and plot dependency of dabench from Debian packages.
+# Idempotent; run as root (or with sudo available). Nothing else is downloaded.
+set -euo pipefail
+packages=(
+  g++ cmake make pkg-config
+  libeigen3-dev libboost-program-options-dev libfmt-dev
+  catch2 libbenchmark-dev
+  libopenmpi-dev openmpi-bin
+  python3-matplotlib python3-numpy
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all dependencies present"
+  exit 0
+fi
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"
