@@ -7,7 +7,9 @@
 // Every N iterations the Theorem-3 test runs on d = max |log(ν/ν̃)| between the last two
 // iterates, with contraction factor α = α(e^d, W*) of Lemmas 1–2 (Fig. 3 writes α(d, ·); the
 // lemma's argument is L = exp(d)), and stops when α d/(1−α) < ½ log(1+δ), which by Lemma 4
-// bounds every belief's deviation from the fixed point by δ.
+// bounds every belief's deviation from the fixed point by δ. In floating point the messages
+// can settle d few ulps apart before the bound is met (huge W*, tiny δ); d ≤ 32·ε also stops
+// the iteration as converged, since no further iteration can move the messages.
 //
 // Sparse, allocation-free implementation: only gated pairs (ψ > 0) are stored. A measurement
 // gated by a single target has ν ≡ 1 at every iteration, so those pairs are folded into a
@@ -17,7 +19,6 @@
 #include <string_view>
 #include <vector>
 
-#include "algorithms/association_graph.hpp"
 #include "harness/params.hpp"
 #include "harness/single_scan_solver.hpp"
 
@@ -47,25 +48,30 @@ class BeliefPropagation final : public SingleScanSolver {
   void solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) override;
 
  private:
-  void build_shared_edges();
+  double build_edges(const SingleScanProblem& problem);  // returns W*
   void iterate_once();
-  double message_distance() const;  // d = max |log(ν/ν̃)|
-  bool converged(double distance, double w_star) const;
+  bool converged() const;  // Theorem-3 test on ν against ν̃
+  void write_beliefs(const SingleScanProblem& problem, MarginalTable& marginals) const;
 
   Options options_;
-  AssociationGraph graph_;
-  // Targets with at least one shared measurement, and their edges to shared measurements.
+  double w_star_ = 0.0;
+  double stop_level_ = 0.0;          // ½ log(1 + δ)
+  std::vector<int> column_degree_;   // gated targets per measurement
+  std::vector<int> compact_column_;  // measurement → shared-measurement index, or -1
+  // Targets with at least one shared measurement ("active"); their shared edges are stored
+  // contiguously, target by target, in increasing measurement order.
   std::vector<int> active_target_;
-  std::vector<int> active_begin_;   // size active+1, into the shared-edge arrays
-  std::vector<double> base_;        // 1 + Σ ψ over the target's exclusive measurements
-  std::vector<double> psi_;         // shared-edge arrays
-  std::vector<int> column_;         // compact index of the shared measurement
+  std::vector<int> active_begin_;    // size active+1
+  std::vector<double> base_;         // 1 + Σ ψ over the target's exclusive measurements
+  std::vector<int> active_of_target_;  // target → active index, or -1
+  std::vector<double> psi_;
+  std::vector<int> row_;             // active index of each shared edge's target
+  std::vector<int> column_;          // shared-measurement index of each shared edge
   std::vector<double> mu_;
   std::vector<double> nu_;
-  std::vector<double> nu_previous_;
-  std::vector<double> column_sum_;  // 1 + Σ_i μ_ij per shared measurement
-  std::vector<int> compact_column_; // measurement → compact shared index or -1
-  std::vector<int> edge_slot_;      // graph edge → shared-edge slot or -1
+  std::vector<double> nu_previous_;  // ν̃ of Fig. 3
+  std::vector<double> row_sum_;      // 1 + Σ_j ψ_ij ν_ji per active target
+  std::vector<double> column_sum_;   // 1 + Σ_i μ_ij per shared measurement
 };
 
 }  // namespace dabench

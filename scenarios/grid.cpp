@@ -54,6 +54,7 @@ std::string GridOptions::validate() const {
   if (!(T > 0.0)) return fmt::format("T = {} must be > 0", T);
   if (steps < 0) return fmt::format("steps = {} must be >= 0", steps);
   if (!(gate_miss > 0.0 && gate_miss < 1.0)) return fmt::format("gate_miss = {} must be in (0, 1)", gate_miss);
+  if (!(weight_floor >= 0.0)) return fmt::format("weight_floor = {} must be >= 0", weight_floor);
   // Refuse clutter that would not fit in memory. Bound the gates by the largest prior (a track
   // never detected) and ignore the estimate noise: this is the typical scale, not a hard cap.
   const ConstantVelocityModel model(q, T, r);
@@ -159,7 +160,8 @@ void GridScenario::generate(RandomStream& rng, ScenarioSample& sample, GridDetai
     bool any = false;
     for (int i = 0; i < n; ++i) {
       const double nis = (points[j] - tracks[i].estimate).squaredNorm() * tracks[i].inverse_s;
-      psi(i, j) = nis > gamma_ ? 0.0 : tracks[i].scale * std::exp(-0.5 * nis);
+      const double weight = nis > gamma_ ? 0.0 : tracks[i].scale * std::exp(-0.5 * nis);
+      psi(i, j) = weight < o.weight_floor ? 0.0 : weight;
       any = any || psi(i, j) > 0.0;
     }
     if (any) column[j] = ++kept;
@@ -183,8 +185,8 @@ void GridScenario::generate(RandomStream& rng, ScenarioSample& sample, GridDetai
     if (i < 0) continue;
     if ((points[j] - tracks[i].estimate).squaredNorm() * tracks[i].inverse_s > gamma_) {
       ++sample.gated_out_detections;
-    } else {
-      sample.true_measurement[i] = column[j];
+    } else if (column[j] > 0 && sample.problem.psi(i, column[j] - 1) > 0.0) {
+      sample.true_measurement[i] = column[j];  // (0 if weight_floor removed it)
     }
   }
 

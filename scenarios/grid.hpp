@@ -24,6 +24,8 @@
 //    these gates".
 //  - Eq (11) with existence r_t = 1 and constant Pd: ψ_i(j) = Pd·N(z_j; ẑ_i, S_i) / (λ_fa(1 − Pd))
 //    inside the gate, 0 outside.
+//  - weight_floor (default 0): ψ below it is set to 0 before any algorithm sees it, as the
+//    paper's experiment 1 thresholds "the weights utilised in all algorithms" at 1e-4.
 //  - Measurements gated by no track are dropped (they cannot change any marginal) but counted in
 //    ScenarioSample::false_alarms; the rest are shuffled so their order does not reveal origin.
 //  - validate() also refuses settings whose expected false-alarm count (with the never-detected
@@ -57,6 +59,7 @@ struct GridOptions {
   double T = 1.0;           // sampling period, > 0
   int steps = 30;           // scans simulated before this one to build each covariance, ≥ 0
   double gate_miss = 1e-4;  // probability that a target's measurement falls outside its gate
+  double weight_floor = 0;  // ψ below this is set to 0 for every algorithm (paper's exp. 1: 1e-4)
 
   void bind(ParamList& p) {
     p.add("rows", rows, "grid rows of targets");
@@ -69,6 +72,7 @@ struct GridOptions {
     p.add("T", T, "sampling period (> 0)");
     p.add("steps", steps, "scans simulated to build each track covariance (>= 0)");
     p.add("gate_miss", gate_miss, "probability a target's measurement falls outside its gate, in (0, 1)");
+    p.add("weight_floor", weight_floor, "weights psi below this are zeroed for all algorithms (>= 0)");
   }
   std::string validate() const;  // "" if valid, else which field breaks which rule
   double gate_threshold() const { return -2.0 * std::log(gate_miss); }  // γ, χ²(2) quantile

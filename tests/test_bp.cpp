@@ -385,13 +385,11 @@ TEST_CASE("bp: stops at the first check where the Fig. 3 / Theorem-3 rule holds"
   CHECK(compared >= 100);
 }
 
-TEST_CASE("bp: tiny delta with huge weights still terminates as converged", "[bp][!mayfail]") {
-  // Known limitation (tagged !mayfail until the lead decides): with W* = 3e6 the rule
-  // α d/(1-α) < ½ log(1+δ) needs d < ~δ/(2W*) ≈ 1.7e-16 for δ = 1e-9, i.e. below the rounding
-  // of ν. The floating-point iterates end in a period-2 cycle one ulp wide instead of an exact
-  // fixed point, so BP runs to max_iterations and reports converged = false although its
-  // beliefs agree with the fixed point to ~1e-16. Expected here: termination well before the
-  // cap, converged, and beliefs at the fixed point of eqs (20)-(22).
+TEST_CASE("bp: tiny delta with huge weights still terminates as converged", "[bp]") {
+  // With W* = 3e6 the rule α d/(1-α) < ½ log(1+δ) needs d < ~δ/(2W*) ≈ 1.7e-16 for δ = 1e-9,
+  // below the rounding of ν: the iterates end in a cycle one ulp wide. BP must recognise the
+  // floating-point fixed point (d ≤ 32ε), stop well before the cap, report converged, and
+  // return the fixed point of eqs (20)-(22).
   RowMatrix psi(2, 3);
   psi << 0, 0.5, 3, 1e6, 1e6, 1e6;
   const SingleScanProblem problem = make_problem(psi);

@@ -54,7 +54,7 @@ TEST_CASE("grid: parameters bind in the documented order and defaults are valid"
   std::vector<std::string> keys;
   for (const auto& entry : params.entries()) keys.push_back(entry.key);
   CHECK(keys == std::vector<std::string>{"rows", "cols", "spacing", "pd", "lambda_fa", "r", "q", "T",
-                                         "steps", "gate_miss"});
+                                         "steps", "gate_miss", "weight_floor"});
   CHECK(options.validate().empty());
   CHECK(options.gate_threshold() == Approx(18.420680743952367).epsilon(1e-14));  // −2 ln 1e-4
 
@@ -281,11 +281,13 @@ TEST_CASE("grid: normalised innovation squared of true detections is chi-square(
   }
 }
 
-TEST_CASE("grid: weights equal eq (11) inside the gate and 0 outside", "[grid]") {
+TEST_CASE("grid: weights equal eq (11) inside the gate and 0 outside or below the floor", "[grid]") {
+  int floored = 0;
   for (const std::vector<KeyValue>& settings : std::vector<std::vector<KeyValue>>{
            {{"rows", "1"}, {"cols", "1"}, {"lambda_fa", "0.1"}},
            {{"spacing", "0"}, {"pd", "0.9"}},
-           {{"spacing", "2"}, {"r", "10"}, {"lambda_fa", "0.0316"}}}) {
+           {{"spacing", "2"}, {"r", "10"}, {"lambda_fa", "0.0316"}},
+           {{"spacing", "2"}, {"lambda_fa", "0.1"}, {"weight_floor", "0.5"}}}) {
     const GridScenario grid(options_from(settings));
     const GridOptions& o = grid.options();
     const double gamma = o.gate_threshold();
@@ -309,7 +311,9 @@ TEST_CASE("grid: weights equal eq (11) inside the gate and 0 outside", "[grid]")
         const double norm = 2.0 * std::numbers::pi * std::sqrt(target.innovation.determinant());
         for (Eigen::Index j = 0; j < psi.cols(); ++j) {
           const double d2 = nis(details.measurements[j], target);
-          const double expected = d2 > gamma ? 0.0 : o.pd * std::exp(-0.5 * d2) / norm / (o.lambda_fa * (1.0 - o.pd));
+          const double eq11 = o.pd * std::exp(-0.5 * d2) / norm / (o.lambda_fa * (1.0 - o.pd));
+          const double expected = d2 > gamma || eq11 < o.weight_floor ? 0.0 : eq11;
+          floored += d2 <= gamma && eq11 < o.weight_floor;
           REQUIRE(psi(i, j) == Approx(expected).epsilon(1e-12).margin(0.0));
         }
         const int column = sample.true_measurement[i];
@@ -319,12 +323,15 @@ TEST_CASE("grid: weights equal eq (11) inside the gate and 0 outside", "[grid]")
           REQUIRE(psi(i, column - 1) > 0.0);
           ++checked_true;
         } else if (target.detected) {
-          REQUIRE(nis(target.measurement, target) > gamma);
+          const double d2 = nis(target.measurement, target);
+          const double eq11 = o.pd * std::exp(-0.5 * d2) / norm / (o.lambda_fa * (1.0 - o.pd));
+          REQUIRE((d2 > gamma || eq11 < o.weight_floor));
         }
       }
     }
     CHECK(checked_true > 100);
   }
+  CHECK(floored > 100);  // the floor case really removed gated weights
 }
 
 TEST_CASE("grid: measurement order does not reveal the true measurement", "[grid]") {
