@@ -12,6 +12,7 @@ std::string BpOptions::validate() const {
   if (check_every < 1) return "check_every must be >= 1";
   if (!(delta > 0.0)) return "delta must be > 0";
   if (max_iterations < 1) return "max_iterations must be >= 1";
+  if (dense_cells < 0) return "dense_cells must be >= 0";
   return {};
 }
 
@@ -40,6 +41,39 @@ __attribute__((target_clones("avx2", "default"))) void bp_iteration(
   for (int c = 0; c < columns; ++c) column_sum[c] = 1.0;
   for (int e = 0; e < edges; ++e) column_sum[column[e]] += mu[e];
   for (int e = 0; e < edges; ++e) nu[e] = 1.0 / (column_sum[column[e]] - mu[e]);
+}
+
+// The same iteration on a small dense block (active targets × shared measurements, row stride
+// a multiple of 4, zeros where there is no edge), for problems where most pairs are gated:
+// every loop is a plain vector loop, with no index loads. Zeros change nothing: ψ = 0 gives
+// μ = 0, and adding 0 leaves every sum bit-identical to the sparse loop, whose order (row
+// sums by measurement, column sums by target) is kept.
+__attribute__((target_clones("avx2", "default"))) void bp_iteration_dense(
+    int active, int stride, const double* __restrict base, const double* __restrict psi,
+    double* __restrict product, double* __restrict column_sum, double* __restrict mu, double* __restrict nu) {
+  constexpr int kLanes = 4;  // stride is a multiple of this: the inner loops are single vector ops
+  for (int a = 0; a < active; ++a) {
+    const int row = a * stride;
+    for (int c = 0; c < stride; c += kLanes) {
+      for (int k = c; k < c + kLanes; ++k) product[row + k] = psi[row + k] * nu[row + k];
+    }
+    double s = base[a];
+    for (int c = 0; c < stride; ++c) s += product[row + c];
+    for (int c = 0; c < stride; c += kLanes) {
+      for (int k = c; k < c + kLanes; ++k) mu[row + k] = psi[row + k] / (s - product[row + k]);
+    }
+  }
+  for (int c = 0; c < stride; ++c) column_sum[c] = 1.0;
+  for (int a = 0; a < active; ++a) {
+    for (int c = 0; c < stride; c += kLanes) {
+      for (int k = c; k < c + kLanes; ++k) column_sum[k] += mu[a * stride + k];
+    }
+  }
+  for (int a = 0; a < active; ++a) {
+    for (int c = 0; c < stride; c += kLanes) {
+      for (int k = c; k < c + kLanes; ++k) nu[a * stride + k] = 1.0 / (column_sum[k] - mu[a * stride + k]);
+    }
+  }
 }
 
 }  // namespace
@@ -93,15 +127,34 @@ double BeliefPropagation::build_edges(const SingleScanProblem& problem) {
       }
     }
   }
-  nu_.assign(psi_.size(), 1.0);  // ν_{j→i,0} = 1 (Fig. 3)
-  mu_.resize(psi_.size());
-  nu_previous_.resize(psi_.size());
-  row_sum_.resize(active_target_.size());
-  column_sum_.resize(shared_columns);
+  const int edges = static_cast<int>(psi_.size());
+  const int active = static_cast<int>(active_target_.size());
+  stride_ = (shared_columns + 3) / 4 * 4;
+  dense_ = edges > 0 && active * stride_ <= options_.dense_cells && active * stride_ <= 4 * edges;
+  const int cells = dense_ ? active * stride_ : edges;
+  if (dense_) {
+    edge_cell_.resize(edges);
+    block_psi_.assign(cells, 0.0);
+    block_product_.resize(cells);
+    for (int e = 0; e < edges; ++e) {
+      edge_cell_[e] = row_[e] * stride_ + column_[e];
+      block_psi_[edge_cell_[e]] = psi_[e];
+    }
+  }
+  nu_.assign(cells, 1.0);  // ν_{j→i,0} = 1 (Fig. 3)
+  mu_.resize(cells);
+  nu_previous_.resize(cells);
+  row_sum_.resize(active);
+  column_sum_.resize(dense_ ? stride_ : shared_columns);
   return w_star;
 }
 
 void BeliefPropagation::iterate_once() {
+  if (dense_) {
+    bp_iteration_dense(static_cast<int>(active_target_.size()), stride_, base_.data(), block_psi_.data(),
+                       block_product_.data(), column_sum_.data(), mu_.data(), nu_.data());
+    return;
+  }
   bp_iteration(static_cast<int>(active_target_.size()), static_cast<int>(psi_.size()),
                static_cast<int>(column_sum_.size()), active_begin_.data(), base_.data(), psi_.data(), row_.data(),
                column_.data(), row_sum_.data(), column_sum_.data(), mu_.data(), nu_.data());
@@ -109,8 +162,10 @@ void BeliefPropagation::iterate_once() {
 
 bool BeliefPropagation::converged() const {
   double largest = 1.0, smallest = 1.0;  // extreme ratios ν/ν̃; d = log max(largest, 1/smallest)
-  for (std::size_t e = 0; e < nu_.size(); ++e) {
-    const double ratio = nu_[e] / nu_previous_[e];
+  const int edges = static_cast<int>(psi_.size());
+  for (int e = 0; e < edges; ++e) {
+    const int cell = dense_ ? edge_cell_[e] : e;  // cells without an edge are not messages
+    const double ratio = nu_[cell] / nu_previous_[cell];
     largest = std::max(largest, ratio);
     smallest = std::min(smallest, ratio);
   }
@@ -139,7 +194,7 @@ void BeliefPropagation::write_beliefs(const SingleScanProblem& problem, Marginal
     for (int j = 0; j < m; ++j) {
       const double psi = weight(problem, unit, i, j);
       double value = 0.0;
-      if (psi > 0.0) value = compact_column_[j] < 0 ? psi : psi * nu_[edge++];
+      if (psi > 0.0) value = compact_column_[j] < 0 ? psi : psi * nu_[dense_ ? edge_cell_[edge++] : edge++];
       row[j + 1] = value;
       s += value;
     }

@@ -12,30 +12,34 @@ std::string ExactOptions::validate() const {
   return {};
 }
 
-// Depth-first enumeration over the cluster's targets in order_; `weight` is the product of the
-// scaled weights chosen so far. At a leaf, the event's weight is added to the partition
-// function and to the accumulator entry of every target's choice.
-void ExactEnumeration::descend(int depth, double weight) {
+// Depth-first enumeration over the cluster's targets in order_; `prefix` is the product of the
+// scaled weights chosen above. Returns the summed weight of every completion below this node,
+// so each choice's share of the partition function, prefix · w · (completions below), is added
+// once per search-tree node instead of once per event and target.
+double ExactEnumeration::descend(int depth, double prefix) {
   if (depth == static_cast<int>(order_.size())) {
     ++events_;
-    partition_ += weight;
-    for (int d = 0; d < depth; ++d) accumulator_[accumulator_row_[d] + choice_[d] + 1] += weight;
-    return;
+    return 1.0;
   }
-  if (events_ > options_.max_events) return;
+  if (events_ > options_.max_events) return 0.0;  // abandoned: the caller reports skipped
   const int target = order_[depth];
   const double scale = row_scale_[target];
-  choice_[depth] = -1;
-  descend(depth + 1, weight * scale);  // missed detection: ψ_i(0) = 1, scaled
+  double* sums = accumulator_.data() + accumulator_row_[depth];
+  double below = descend(depth + 1, prefix * scale);  // missed detection: ψ_i(0) = 1, scaled
+  sums[0] += prefix * scale * below;
+  double total = scale * below;
   const int begin = graph_.row_begin(target);
   for (int e = begin; e < graph_.row_end(target); ++e) {
     const int j = graph_.edge_measurement(e);
     if (used_[j]) continue;
     used_[j] = 1;
-    choice_[depth] = e - begin;
-    descend(depth + 1, weight * graph_.edge_weight(e) * scale);
+    const double w = graph_.edge_weight(e) * scale;
+    below = descend(depth + 1, prefix * w);
     used_[j] = 0;
+    sums[e - begin + 1] += prefix * w * below;
+    total += w * below;
   }
+  return total;
 }
 
 bool ExactEnumeration::enumerate_cluster(int first, int last, MarginalTable& marginals) {
@@ -45,7 +49,6 @@ bool ExactEnumeration::enumerate_cluster(int first, int last, MarginalTable& mar
     return graph_.row_end(a) - graph_.row_begin(a) > graph_.row_end(b) - graph_.row_begin(b);
   });
   const int depth = static_cast<int>(order_.size());
-  choice_.resize(depth);
   accumulator_row_.resize(depth);
   int size = 0;
   for (int d = 0; d < depth; ++d) {
@@ -53,11 +56,10 @@ bool ExactEnumeration::enumerate_cluster(int first, int last, MarginalTable& mar
     size += graph_.row_end(order_[d]) - graph_.row_begin(order_[d]) + 1;
   }
   accumulator_.assign(size, 0.0);
-  partition_ = 0.0;
-  descend(0, 1.0);
+  const double partition = descend(0, 1.0);
   if (events_ > options_.max_events) return false;
 
-  const double inverse = 1.0 / partition_;
+  const double inverse = 1.0 / partition;
   for (int d = 0; d < depth; ++d) {
     const int target = order_[d];
     const double* sums = accumulator_.data() + accumulator_row_[d];

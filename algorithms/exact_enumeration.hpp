@@ -43,17 +43,15 @@ class ExactEnumeration final : public SingleScanSolver {
 
  private:
   bool enumerate_cluster(int first, int last, MarginalTable& marginals);
-  void descend(int depth, double weight);
+  double descend(int depth, double prefix);
 
   Options options_;
   AssociationGraph graph_;
   std::vector<double> row_scale_;     // 1 / max(1, max_j ψ_i(j)) per target
   std::vector<int> order_;            // targets of the current cluster
-  std::vector<int> choice_;           // per depth: chosen edge, or -1 for a missed detection
   std::vector<char> used_;            // per measurement
-  std::vector<double> accumulator_;   // per depth: edge weights sum, indexed [edge+1] / [0] miss
-  std::vector<int> accumulator_row_;  // per depth: offset of its row in accumulator_
-  double partition_ = 0.0;
+  std::vector<double> accumulator_;   // per depth: summed event weight per choice, [0] = missed,
+  std::vector<int> accumulator_row_;  //   [k+1] = k-th edge; accumulator_row_ = offset per depth
   std::int64_t events_ = 0;
 };
 

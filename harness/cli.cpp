@@ -35,6 +35,17 @@ std::string joined_command_line(int argc, char** argv) {
   return text;
 }
 
+// The command that finishes an interrupted run: the same words, --force/--resume replaced.
+std::string resume_command_line(int argc, char** argv) {
+  std::string text;
+  for (int k = 0; k < argc; ++k) {
+    const std::string word = argv[k];
+    if (word == "--force" || word == "--resume") continue;
+    text += (text.empty() ? "" : " ") + word;
+  }
+  return text + " --resume";
+}
+
 // Parses the options of one subcommand; po errors become InputError with the subcommand named.
 po::variables_map parse_command(const std::string& command, const po::options_description& options,
                                 const po::positional_options_description& positional, int argc, char** argv) {
@@ -57,7 +68,6 @@ int command_list() {
   std::string out = "Algorithms (SPEC = name or name:key=value,...):\n";
   for (const auto& [name, entry] : single_scan_registry().entries()) {
     out += fmt::format("  {:<10} {}\n", name, entry.summary);
-    ParamList params;
     for (const auto& param : entry.defaults) out += fmt::format("      {:<16} = {:<10} {}\n", param.key, ParamList::format(param), param.doc);
   }
   out += "\nScenarios (parameters settable in an experiment's [scenario] and [sweep] sections):\n";
@@ -139,7 +149,7 @@ int command_solve(int argc, char** argv) {
   return 0;
 }
 
-int command_run(int argc, char** argv, const std::string& command_line) {
+int command_run(int argc, char** argv, const std::string& command_line, const std::string& resume_line) {
   po::options_description options("run options");
   RunOptions run;
   run.command_line = command_line;
@@ -174,8 +184,8 @@ int command_run(int argc, char** argv, const std::string& command_line) {
 
   const RunOutcome outcome = run_experiment(run);
   if (outcome.interrupted) {
-    std::fprintf(stderr, "dabench: interrupted after %lld of %lld trials; finish with: %s --resume\n",
-                 outcome.items_written, outcome.items_total, command_line.c_str());
+    std::fprintf(stderr, "dabench: interrupted after %lld of %lld trials; finish with: %s\n",
+                 outcome.items_written, outcome.items_total, resume_line.c_str());
     return 130;
   }
   std::fprintf(stderr, "dabench: %lld trials done; results in %s/ (trials.csv, summary.csv, meta.json)\n",
@@ -188,16 +198,20 @@ int command_run(int argc, char** argv, const std::string& command_line) {
 int cli_main(int argc, char** argv) {
   const std::string command = argc > 1 ? argv[1] : "";
   try {
-    if (command == "list" && argc == 2) return command_list();
+    if (command == "list") {
+      if (argc > 2) throw InputError(fmt::format("list: unexpected argument '{}'", argv[2]));
+      return command_list();
+    }
     if (command == "solve") return command_solve(argc - 1, argv + 1);
-    if (command == "run") return command_run(argc - 1, argv + 1, joined_command_line(argc, argv));
+    if (command == "run") {
+      return command_run(argc - 1, argv + 1, joined_command_line(argc, argv), resume_command_line(argc, argv));
+    }
     if (command == "-h" || command == "--help" || command == "help") {
       std::fputs(kUsage, stdout);
       return 0;
     }
-    std::fprintf(stderr, "dabench: %s\n%s",
-                 command.empty() ? "missing command" : fmt::format("unknown command '{}'", command).c_str(), kUsage);
-    return 2;
+    throw InputError(command.empty() ? "missing command (list, solve or run; see dabench --help)"
+                                     : fmt::format("unknown command '{}' (list, solve or run; see dabench --help)", command));
   } catch (const InputError& error) {
     std::fprintf(stderr, "dabench: %s\n", error.what());
     return 2;

@@ -102,7 +102,26 @@ void expand_block(const SweepBlock& block, const std::vector<KeyValue>& fixed, c
 
 }  // namespace
 
+namespace {
+
+// Boost's parser names a bad line by its text only; find it first to report its number.
+void check_ini_lines(const std::string& path, const std::string& text) {
+  std::istringstream lines(text);
+  std::string line;
+  int number = 0;
+  while (std::getline(lines, line)) {
+    ++number;
+    const std::string_view content = trim(std::string_view(line).substr(0, line.find('#')));
+    if (content.empty() || content.find('=') != std::string_view::npos) continue;
+    if (content.front() == '[' && content.back() == ']') continue;
+    throw InputError(fmt::format("{}:{}: '{}' is not 'key = value' or a [section]", path, number, content));
+  }
+}
+
+}  // namespace
+
 Experiment load_experiment(const std::string& path) {
+  if (std::filesystem::is_directory(path)) throw InputError(fmt::format("{}: is a folder, not an experiment file", path));
   std::ifstream file(path);
   if (!file) throw InputError(fmt::format("{}: cannot read experiment file", path));
   std::stringstream buffer;
@@ -112,6 +131,7 @@ Experiment load_experiment(const std::string& path) {
   experiment.text = buffer.str();
   experiment.name = std::filesystem::path(path).stem().string();
 
+  check_ini_lines(path, experiment.text);
   po::parsed_options parsed(nullptr);
   try {
     std::istringstream stream(experiment.text);

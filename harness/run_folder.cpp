@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "harness/atomic_file.hpp"
 #include "harness/errors.hpp"
 
 namespace dabench {
@@ -42,7 +43,7 @@ std::FILE* open_or_throw(const std::string& path, const char* mode) {
 
 }  // namespace
 
-OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force) {
+OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force, const std::string& initial_meta) {
   const std::string trials = trials_path(plan);
   const std::string meta = meta_path(plan);
   const bool holds_run = fs::exists(trials) || fs::exists(meta);
@@ -62,7 +63,7 @@ OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force) {
                                    "algorithms (use --force to start over)", plan.output));
     }
     const std::string text = read_all(trials);
-    if (text.compare(0, header.size(), header) == 0) {
+    if (text.size() >= header.size() && text.compare(0, header.size(), header) == 0) {
       // Keep whole items only: every item has one row per algorithm.
       const long long rows_per_item = static_cast<long long>(plan.specs.size());
       long long complete_lines = 0;
@@ -78,11 +79,15 @@ OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force) {
       opened.resumed = true;
       return opened;
     }
-    if (!text.empty()) {
+    // A file cut inside its header (or never written) holds no rows: start it afresh.
+    if (header.compare(0, text.size(), text) != 0) {
       throw InputError(fmt::format("{}: header differs from this experiment's; use --force to start over", trials));
     }
   }
   fs::remove(fs::path(plan.output) / "summary.csv", error);
+  // meta.json (with the run's fingerprint) exists before trials.csv, so any folder holding
+  // rows can be checked by --resume.
+  write_file_atomically(meta, initial_meta);
   opened.file = open_or_throw(trials, "wb");
   if (std::fputs(header.c_str(), opened.file) < 0 || std::fflush(opened.file) != 0) {
     throw InputError(fmt::format("{}: write failed", trials));

@@ -14,7 +14,8 @@ struct OpenedTrials {
   bool resumed = false;
 };
 
-OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force);  // throws InputError
+// `initial_meta` is written to meta.json before a fresh trials.csv is created.
+OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force, const std::string& initial_meta);
 
 std::string trials_path(const RunPlan& plan);
 std::string summary_path(const RunPlan& plan);

@@ -202,8 +202,9 @@ RunOutcome run_experiment(const RunOptions& options) {
   const auto* scenario_entry = scenario_registry().find(plan.experiment.scenario);
   for (const auto& settings : plan.point_settings) scenarios.push_back(scenario_entry->create(settings));
 
-  OpenedTrials opened = open_trials_file(plan, options.resume, options.force);
   const std::string started = utc_now();
+  OpenedTrials opened = open_trials_file(plan, options.resume, options.force,
+                                         meta_json(plan, options, started, "running", 0, 0.0, std::nan(""), false));
   write_file_atomically(meta_path(plan), meta_json(plan, options, started, "running", opened.items_done, 0.0,
                                                    std::nan(""), opened.resumed));
 

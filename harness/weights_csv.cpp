@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <vector>
 
@@ -13,6 +14,7 @@
 namespace dabench {
 
 SingleScanProblem read_weights_csv(const std::string& path) {
+  if (std::filesystem::is_directory(path)) throw InputError(fmt::format("{}: is a folder, not a weights file", path));
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("{}: cannot read weights file", path));
   std::vector<double> values;

@@ -1,0 +1,596 @@
+// The command-line contract of DESIGN.md ("Command line"), tested on the real executable:
+//  - every error path exits with status != 0, prints exactly one line on stderr naming the
+//    problem (and the file/line where there is one), prints nothing on stdout, and leaves no
+//    file behind (the working folder is byte-identical before and after);
+//  - `solve` prints target,measurement,probability with n·(m+1) rows, 1-based targets,
+//    measurement 0 = missed detection, rows summing to 1, and the closed-form marginals of a
+//    hand-computable 2×2 problem (also in --format json);
+//  - `run` rejects every bad experiment before creating its output folder, refuses a folder
+//    that holds a run unless --resume/--force (and then leaves it untouched), and refuses to
+//    resume a different run;
+//  - `list` names the algorithms, the scenarios and the experiment files.
+#include <catch2/catch.hpp>
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "tests/support/cli_runner.hpp"
+
+using namespace dabench::test::cli;
+
+namespace {
+
+int count_newlines(const std::string& text) {
+  int count = 0;
+  for (const char c : text) count += c == '\n';
+  return count;
+}
+
+// Runs dabench with `args` in dir.work(); requires the error contract and that every string of
+// `mentions` occurs in the message. Returns the stderr line.
+std::string expect_error(const TempDir& dir, const std::vector<std::string>& args,
+                         const std::vector<std::string>& mentions) {
+  const auto before = snapshot(dir.work());
+  const CliResult result = run_dabench(dir, args);
+  std::string shown;
+  for (const auto& arg : args) shown += " " + arg;
+  INFO("dabench" << shown);
+  INFO("stderr: " << result.err);
+  CHECK_FALSE(result.signaled);
+  CHECK(result.status != 0);
+  CHECK(result.out.empty());
+  CHECK(count_newlines(result.err) == 1);
+  CHECK((!result.err.empty() && result.err.back() == '\n'));
+  for (const auto& part : mentions) {
+    INFO("the message should mention: " << part);
+    CHECK(contains(result.err, part));
+  }
+  CHECK(snapshot(dir.work()) == before);
+  return result.err;
+}
+
+CliResult run_ok(const TempDir& dir, const std::vector<std::string>& args) {
+  const CliResult result = run_dabench(dir, args);
+  INFO("stderr: " << result.err);
+  REQUIRE(result.status == 0);
+  return result;
+}
+
+struct MarginalRow {
+  int target = 0;
+  int measurement = 0;
+  double probability = 0.0;
+};
+
+// Parses solve's CSV output and checks its shape: header, n·(m+1) rows in (target, measurement)
+// order, probabilities in [0, 1], each target's row summing to 1.
+std::vector<MarginalRow> check_solve_csv(const std::string& out, int n, int m) {
+  const auto lines = split_lines(out);
+  REQUIRE(!lines.empty());
+  CHECK(lines[0] == "target,measurement,probability");
+  REQUIRE(lines.size() == static_cast<std::size_t>(1 + n * (m + 1)));
+  CHECK(out.back() == '\n');
+  std::vector<MarginalRow> rows;
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    const auto fields = parse_csv_line(lines[k]);
+    REQUIRE(fields.size() == 3);
+    MarginalRow row{std::stoi(fields[0]), std::stoi(fields[1]), to_double(fields[2])};
+    const int index = static_cast<int>(k - 1);
+    CHECK(row.target == index / (m + 1) + 1);
+    CHECK(row.measurement == index % (m + 1));
+    CHECK(row.probability >= 0.0);
+    CHECK(row.probability <= 1.0);
+    rows.push_back(row);
+  }
+  for (int i = 0; i < n; ++i) {
+    double sum = 0.0;
+    for (int j = 0; j <= m; ++j) sum += rows[static_cast<std::size_t>(i * (m + 1) + j)].probability;
+    INFO("target " << i + 1);
+    CHECK(sum == Approx(1.0).margin(1e-12));
+  }
+  return rows;
+}
+
+// A strict JSON syntax check (RFC 8259 grammar, no extensions), enough to say "it parses".
+class JsonChecker {
+ public:
+  explicit JsonChecker(const std::string& text) : text_(text) {}
+  bool valid() {
+    at_ = 0;
+    if (!value()) return false;
+    space();
+    return at_ == text_.size();
+  }
+
+ private:
+  void space() {
+    while (at_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[at_]))) ++at_;
+  }
+  bool literal(const char* word) {
+    const std::string w(word);
+    if (text_.compare(at_, w.size(), w) != 0) return false;
+    at_ += w.size();
+    return true;
+  }
+  bool string() {
+    if (text_[at_] != '"') return false;
+    for (++at_; at_ < text_.size(); ++at_) {
+      const char c = text_[at_];
+      if (c == '"') {
+        ++at_;
+        return true;
+      }
+      if (static_cast<unsigned char>(c) < 0x20) return false;
+      if (c == '\\') ++at_;
+    }
+    return false;
+  }
+  bool number() {
+    const char* begin = text_.c_str() + at_;
+    if (*begin != '-' && !std::isdigit(static_cast<unsigned char>(*begin))) return false;
+    char* end = nullptr;
+    std::strtod(begin, &end);
+    if (end == begin) return false;
+    const std::string token(begin, static_cast<const char*>(end));
+    if (token.find_first_not_of("0123456789+-.eE") != std::string::npos) return false;  // no nan/inf/hex
+    at_ += static_cast<std::size_t>(end - begin);
+    return true;
+  }
+  bool value() {
+    space();
+    if (at_ >= text_.size()) return false;
+    const char c = text_[at_];
+    if (c == '{') return container('}', true);
+    if (c == '[') return container(']', false);
+    if (c == '"') return string();
+    if (c == 't') return literal("true");
+    if (c == 'f') return literal("false");
+    if (c == 'n') return literal("null");
+    return number();
+  }
+  bool container(char close, bool object) {
+    ++at_;
+    space();
+    if (at_ < text_.size() && text_[at_] == close) {
+      ++at_;
+      return true;
+    }
+    while (true) {
+      space();
+      if (object) {
+        if (at_ >= text_.size() || !string()) return false;
+        space();
+        if (at_ >= text_.size() || text_[at_++] != ':') return false;
+      }
+      if (!value()) return false;
+      space();
+      if (at_ >= text_.size()) return false;
+      const char next = text_[at_++];
+      if (next == close) return true;
+      if (next != ',') return false;
+    }
+  }
+
+  const std::string& text_;
+  std::size_t at_ = 0;
+};
+
+// The numbers of the JSON array that follows "key": (flattened, in order).
+std::vector<double> json_numbers_after(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\":");
+  REQUIRE(at != std::string::npos);
+  const auto open = json.find('[', at);
+  REQUIRE(open != std::string::npos);
+  std::vector<double> numbers;
+  int depth = 0;
+  for (std::size_t k = open; k < json.size(); ++k) {
+    const char c = json[k];
+    if (c == '[') {
+      ++depth;
+    } else if (c == ']') {
+      if (--depth == 0) break;
+    } else if (c == '-' || std::isdigit(static_cast<unsigned char>(c))) {
+      char* end = nullptr;
+      numbers.push_back(std::strtod(json.c_str() + k, &end));
+      k = static_cast<std::size_t>(end - json.c_str()) - 1;
+    }
+  }
+  return numbers;
+}
+
+// ψ = [[a, b], [c, d]]: the events are {none, 1→1, 1→2, 2→1, 2→2, 1→1&2→2, 1→2&2→1}, so
+// Z = 1 + a + b + c + d + ad + bc and
+//   p(a1=0) = (1+c+d)/Z, p(a1=1) = a(1+d)/Z, p(a1=2) = b(1+c)/Z,
+//   p(a2=0) = (1+a+b)/Z, p(a2=1) = c(1+b)/Z, p(a2=2) = d(1+a)/Z.
+constexpr double kA = 0.5, kB = 2.0, kC = 3.0, kD = 0.25;
+const char* const kWeights2x2 = "0.5,2\n3,0.25\n";
+std::vector<double> marginals_2x2() {
+  const double z = 1 + kA + kB + kC + kD + kA * kD + kB * kC;
+  return {(1 + kC + kD) / z, kA * (1 + kD) / z, kB * (1 + kC) / z,
+          (1 + kA + kB) / z, kC * (1 + kB) / z, kD * (1 + kA) / z};
+}
+
+const char* const kGoodExperiment =
+    "scenario = grid\n"
+    "trials = 3\n"
+    "seed = 5\n"
+    "output = out\n"
+    "reference = exact\n"
+    "algorithm = bp\n"
+    "[scenario]\n"
+    "rows = 1\n"
+    "cols = 2\n"
+    "[sweep]\n"
+    "spacing = 1, 2\n";
+
+// kGoodExperiment with `line` inserted after the top-level keys (before [scenario]) or appended.
+std::string experiment_with(const std::string& top, const std::string& tail = "") {
+  std::string text = kGoodExperiment;
+  text.insert(text.find("[scenario]"), top);
+  return text + tail;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// solve: errors
+
+TEST_CASE("cli solve: malformed weights files are rejected naming file and line", "[cli][solve]") {
+  TempDir dir;
+  dir.write("ok.csv", kWeights2x2);
+  SECTION("ragged rows") {
+    dir.write("ragged.csv", "1,2\n3,4\n5\n");
+    expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "ragged.csv"}, {"ragged.csv:3", "ragged"});
+  }
+  SECTION("non-numeric field") {
+    dir.write("text.csv", "1,2\n3,abc\n");
+    expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "text.csv"}, {"text.csv:2", "abc"});
+  }
+  SECTION("negative weight") {
+    dir.write("negative.csv", "1,-0.5\n");
+    expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "negative.csv"}, {"negative.csv:1", "negative"});
+  }
+  SECTION("nan") {
+    dir.write("nan.csv", "1,2\nnan,1\n");
+    expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "nan.csv"}, {"nan.csv:2", "nan"});
+  }
+  SECTION("inf") {
+    dir.write("inf.csv", "inf,1\n");
+    expect_error(dir, {"solve", "--algorithm", "exact", "--weights", "inf.csv"}, {"inf.csv:1", "inf"});
+  }
+  SECTION("empty file") {
+    dir.write("empty.csv", "");
+    expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "empty.csv"}, {"empty.csv", "empty"});
+  }
+  SECTION("missing file") {
+    expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "missing.csv"}, {"missing.csv"});
+  }
+}
+
+TEST_CASE("cli solve: bad algorithm specs and options are rejected", "[cli][solve]") {
+  TempDir dir;
+  dir.write("ok.csv", kWeights2x2);
+  SECTION("unknown algorithm") {
+    expect_error(dir, {"solve", "--algorithm", "nosuch", "--weights", "ok.csv"}, {"nosuch"});
+  }
+  SECTION("unknown parameter") {
+    expect_error(dir, {"solve", "--algorithm", "bp:foo=1", "--weights", "ok.csv"}, {"foo"});
+  }
+  SECTION("malformed value") {
+    expect_error(dir, {"solve", "--algorithm", "bp:delta=abc", "--weights", "ok.csv"}, {"delta", "abc"});
+  }
+  SECTION("out-of-range value") {
+    expect_error(dir, {"solve", "--algorithm", "bp:check_every=0", "--weights", "ok.csv"}, {"check_every"});
+  }
+  SECTION("missing --weights") {
+    expect_error(dir, {"solve", "--algorithm", "bp"}, {"weights"});
+  }
+  SECTION("missing --algorithm") {
+    expect_error(dir, {"solve", "--weights", "ok.csv"}, {"algorithm"});
+  }
+  SECTION("bad --format") {
+    expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "ok.csv", "--format", "xml"}, {"format", "xml"});
+  }
+  SECTION("--pd outside (0, 1)") {
+    expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "ok.csv", "--pd", "1.5"}, {"pd", "1.5"});
+  }
+  SECTION("unknown option") {
+    expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "ok.csv", "--bogus"}, {"bogus"});
+  }
+}
+
+TEST_CASE("cli solve: exact past its work limit exits 3 with a skipped line", "[cli][solve]") {
+  TempDir dir;
+  std::string ones;
+  for (int i = 0; i < 6; ++i) ones += "1,1,1,1,1,1\n";
+  dir.write("dense.csv", ones);
+  const auto before = snapshot(dir.work());
+  const CliResult result = run_dabench(dir, {"solve", "--algorithm", "exact:max_events=10", "--weights", "dense.csv"});
+  INFO("stderr: " << result.err);
+  CHECK(result.status == 3);
+  CHECK(result.out.empty());
+  CHECK(count_newlines(result.err) == 1);
+  CHECK(contains(result.err, "skipped:"));
+  CHECK(snapshot(dir.work()) == before);
+}
+
+// ---------------------------------------------------------------------------------------------
+// solve: output
+
+TEST_CASE("cli solve: exact matches the hand-computed 2x2 marginals", "[cli][solve]") {
+  TempDir dir;
+  dir.write("w.csv", kWeights2x2);
+  const CliResult result = run_ok(dir, {"solve", "--algorithm", "exact", "--weights", "w.csv"});
+  CHECK(result.err.empty());
+  const auto rows = check_solve_csv(result.out, 2, 2);
+  const auto expected = marginals_2x2();
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    INFO("row " << k + 1);
+    CHECK(rows[k].probability == Approx(expected[k]).epsilon(1e-13));
+  }
+}
+
+TEST_CASE("cli solve: output shape for bp and exact on a 3x4 problem", "[cli][solve]") {
+  TempDir dir;
+  // Row 2 gates nothing (all zero): p(a2 = 0) = 1. Trailing blank lines and spaces are allowed.
+  dir.write("w.csv", "0.5, 1, 0, 2\n0,0,0,0\n3,0.25,1.5,0\n\n");
+  for (const std::string spec : {"bp", "exact", "bp:delta=1e-9,check_every=1"}) {
+    INFO("spec " << spec);
+    const CliResult result = run_ok(dir, {"solve", "--algorithm", spec, "--weights", "w.csv"});
+    const auto rows = check_solve_csv(result.out, 3, 4);
+    CHECK(rows[5].probability == 1.0);  // target 2, measurement 0
+    for (int j = 1; j <= 4; ++j) CHECK(rows[static_cast<std::size_t>(5 + j)].probability == 0.0);
+    CHECK(rows[3].probability == 0.0);  // ψ_1(3) = 0 is impossible
+  }
+}
+
+TEST_CASE("cli solve: bp is exact on a single target", "[cli][solve]") {
+  // One target: no loops, p(a=j) = ψ_j / (1 + Σψ) with ψ_0 = 1.
+  TempDir dir;
+  dir.write("w.csv", "0.5,2,1.5\n");
+  const CliResult result = run_ok(dir, {"solve", "--algorithm", "bp", "--weights", "w.csv"});
+  const auto rows = check_solve_csv(result.out, 1, 3);
+  const double z = 1 + 0.5 + 2 + 1.5;
+  const double expected[] = {1 / z, 0.5 / z, 2 / z, 1.5 / z};
+  for (int j = 0; j <= 3; ++j) CHECK(rows[static_cast<std::size_t>(j)].probability == Approx(expected[j]).epsilon(1e-12));
+}
+
+TEST_CASE("cli solve: --format json parses and holds the marginals", "[cli][solve]") {
+  TempDir dir;
+  dir.write("w.csv", kWeights2x2);
+  const CliResult result = run_ok(dir, {"solve", "--algorithm", "exact", "--weights", "w.csv", "--format", "json"});
+  INFO("stdout: " << result.out);
+  CHECK(JsonChecker(result.out).valid());
+  CHECK(contains(result.out, "\"algorithm\": \"exact\""));
+  CHECK(contains(result.out, "\"targets\": 2"));
+  CHECK(contains(result.out, "\"measurements\": 2"));
+  const auto numbers = json_numbers_after(result.out, "marginals");
+  const auto expected = marginals_2x2();
+  REQUIRE(numbers.size() == expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) CHECK(numbers[k] == Approx(expected[k]).epsilon(1e-13));
+
+  // The same numbers as the CSV output, and a SPEC with a comma survives JSON quoting.
+  const CliResult csv = run_ok(dir, {"solve", "--algorithm", "exact", "--weights", "w.csv"});
+  const auto rows = check_solve_csv(csv.out, 2, 2);
+  for (std::size_t k = 0; k < expected.size(); ++k) CHECK(numbers[k] == rows[k].probability);
+  const CliResult bp = run_ok(dir, {"solve", "--algorithm", "bp:delta=1e-6,check_every=10", "--weights", "w.csv",
+                                    "--format", "json"});
+  CHECK(JsonChecker(bp.out).valid());
+  CHECK(contains(bp.out, "\"algorithm\": \"bp:delta=1e-6,check_every=10\""));
+}
+
+// ---------------------------------------------------------------------------------------------
+// run: errors (each leaves the working folder untouched: no output folder, no file)
+
+TEST_CASE("cli run: the good base experiment runs", "[cli][run]") {
+  // The error cases below are this experiment with one thing broken.
+  TempDir dir;
+  dir.write("e.ini", kGoodExperiment);
+  run_ok(dir, {"run", "e.ini", "--threads", "1"});
+  CHECK(dir.exists("out/trials.csv"));
+  CHECK(dir.exists("out/summary.csv"));
+  CHECK(dir.exists("out/meta.json"));
+}
+
+TEST_CASE("cli run: bad experiment files are rejected before any output", "[cli][run]") {
+  TempDir dir;
+  SECTION("missing experiment file") {
+    expect_error(dir, {"run", "nothere.ini"}, {"nothere.ini"});
+  }
+  SECTION("experiment path is a folder") {
+    std::filesystem::create_directories(dir.work() / "folder.ini");
+    expect_error(dir, {"run", "folder.ini"}, {"folder.ini"});
+  }
+  SECTION("malformed INI line") {
+    dir.write("e.ini", experiment_with("this line has no equals sign\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "this line has no equals sign"});
+  }
+  SECTION("unknown top-level key") {
+    dir.write("e.ini", experiment_with("colour = blue\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "colour"});
+  }
+  SECTION("unknown section") {
+    dir.write("e.ini", experiment_with("", "[sweeps]\nspacing = 1\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "sweeps"});
+  }
+  SECTION("unknown scenario") {
+    std::string text = kGoodExperiment;
+    text.replace(text.find("grid"), 4, "nosuchscenario");
+    dir.write("e.ini", text);
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "nosuchscenario"});
+  }
+  SECTION("missing scenario") {
+    std::string text = kGoodExperiment;
+    text.erase(text.find("scenario = grid\n"), 16);
+    dir.write("e.ini", text);
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "scenario"});
+  }
+  SECTION("unknown scenario parameter in [scenario]") {
+    dir.write("e.ini", experiment_with("", "[scenario]\nwidth = 3\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "width"});
+  }
+  SECTION("unknown scenario parameter in [sweep]") {
+    dir.write("e.ini", experiment_with("", "[sweep]\nheight = 1,2\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "height"});
+  }
+  SECTION("pd out of range") {
+    dir.write("e.ini", experiment_with("", "[scenario]\npd = 1.2\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "pd", "1.2"});
+  }
+  SECTION("negative spacing in a sweep") {
+    dir.write("e.ini", experiment_with("", "[sweep.more]\nspacing = 2, -1\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "spacing", "-1"});
+  }
+  SECTION("rows = 0") {
+    dir.write("e.ini", experiment_with("", "[scenario]\nrows = 0\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "rows"});
+  }
+  SECTION("non-numeric scenario value") {
+    dir.write("e.ini", experiment_with("", "[scenario]\nlambda_fa = lots\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "lambda_fa", "lots"});
+  }
+  SECTION("trials = 0") {
+    std::string text = kGoodExperiment;
+    text.replace(text.find("trials = 3"), 10, "trials = 0");
+    dir.write("e.ini", text);
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "trials"});
+  }
+  SECTION("unknown algorithm") {
+    dir.write("e.ini", experiment_with("algorithm = nosuchalgo\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "nosuchalgo"});
+  }
+  SECTION("unknown algorithm parameter") {
+    dir.write("e.ini", experiment_with("algorithm = bp:tolerance=1\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "tolerance"});
+  }
+  SECTION("unknown reference") {
+    std::string text = kGoodExperiment;
+    text.replace(text.find("reference = exact"), 17, "reference = nosuchref");
+    dir.write("e.ini", text);
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "nosuchref"});
+  }
+  SECTION("range with zero step") {
+    dir.write("e.ini", experiment_with("", "[sweep.b]\nspacing = 0:0:10\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "0:0:10"});
+  }
+  SECTION("range with two parts") {
+    dir.write("e.ini", experiment_with("", "[sweep.b]\nspacing = 0:1\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "0:1"});
+  }
+  SECTION("tie to an unswept key") {
+    dir.write("e.ini", experiment_with("", "[sweep.b]\nspacing = 1,2\ncols = @rows\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini", "@rows"});
+  }
+}
+
+TEST_CASE("cli run: bad options are rejected before any output", "[cli][run]") {
+  TempDir dir;
+  dir.write("e.ini", kGoodExperiment);
+  SECTION("--trials 0") {
+    expect_error(dir, {"run", "e.ini", "--trials", "0"}, {"trials"});
+  }
+  SECTION("--threads 0") {
+    expect_error(dir, {"run", "e.ini", "--threads", "0"}, {"threads"});
+  }
+  SECTION("--seed -1") {
+    expect_error(dir, {"run", "e.ini", "--seed", "-1"}, {"seed"});
+  }
+  SECTION("--trials abc") {
+    expect_error(dir, {"run", "e.ini", "--trials", "abc"}, {"trials"});
+  }
+  SECTION("--resume and --force together") {
+    expect_error(dir, {"run", "e.ini", "--resume", "--force"}, {"--resume", "--force"});
+  }
+  SECTION("no experiment") {
+    expect_error(dir, {"run"}, {"experiment"});
+  }
+  SECTION("two experiments") {
+    expect_error(dir, {"run", "e.ini", "e.ini"}, {});
+  }
+}
+
+TEST_CASE("cli run: a folder holding a run is refused and left byte-identical", "[cli][run]") {
+  TempDir dir;
+  dir.write("e.ini", kGoodExperiment);
+  run_ok(dir, {"run", "e.ini", "--threads", "1"});
+  REQUIRE(dir.exists("out/trials.csv"));
+
+  SECTION("without --resume or --force") {
+    expect_error(dir, {"run", "e.ini"}, {"out", "--resume", "--force"});
+  }
+  SECTION("with --out naming the same folder") {
+    expect_error(dir, {"run", "e.ini", "--out", "out"}, {"out"});
+  }
+  SECTION("only meta.json left") {
+    std::filesystem::remove(dir.work() / "out" / "trials.csv");
+    expect_error(dir, {"run", "e.ini"}, {"out"});
+  }
+  SECTION("--resume with a different seed") {
+    expect_error(dir, {"run", "e.ini", "--resume", "--seed", "6"}, {"out", "resume"});
+  }
+  SECTION("--resume with different trials") {
+    expect_error(dir, {"run", "e.ini", "--resume", "--trials", "4"}, {"out", "resume"});
+  }
+  SECTION("--resume with a different experiment") {
+    std::string text = kGoodExperiment;
+    text.replace(text.find("spacing = 1, 2"), 14, "spacing = 1, 3");
+    dir.write("e2.ini", text);
+    expect_error(dir, {"run", "e2.ini", "--resume"}, {"out", "resume"});
+  }
+  SECTION("--resume with a different algorithm list") {
+    dir.write("e2.ini", experiment_with("algorithm = bp:delta=1e-6\n"));
+    expect_error(dir, {"run", "e2.ini", "--resume"}, {"out", "resume"});
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// commands
+
+TEST_CASE("cli: unknown or missing command fails without stdout", "[cli]") {
+  TempDir dir;
+  const auto before = snapshot(dir.work());
+  SECTION("unknown command") {
+    const CliResult result = run_dabench(dir, {"frobnicate"});
+    CHECK(result.status != 0);
+    CHECK(result.out.empty());
+    REQUIRE(!result.err.empty());
+    CHECK(contains(split_lines(result.err)[0], "frobnicate"));
+  }
+  SECTION("no command") {
+    const CliResult result = run_dabench(dir, {});
+    CHECK(result.status != 0);
+    CHECK(result.out.empty());
+    REQUIRE(!result.err.empty());
+    CHECK(contains(split_lines(result.err)[0], "command"));
+  }
+  CHECK(snapshot(dir.work()) == before);
+}
+
+// DESIGN.md: "on bad input a one-line message". The unknown/missing-command paths also print
+// the usage text (5 lines) on stderr.
+TEST_CASE("cli: unknown or missing command prints exactly one stderr line", "[cli]") {
+  TempDir dir;
+  CHECK(count_newlines(run_dabench(dir, {"frobnicate"}).err) == 1);
+  CHECK(count_newlines(run_dabench(dir, {}).err) == 1);
+}
+
+TEST_CASE("cli list: names algorithms with parameters and scenarios and experiments", "[cli]") {
+  TempDir dir;
+  const CliResult result = run_ok(dir, {"list"});
+  CHECK(result.err.empty());
+  for (const char* word : {"bp", "exact", "grid", "check_every", "delta", "max_events", "spacing", "quickstart.ini"}) {
+    INFO("list should mention " << word);
+    CHECK(contains(result.out, word));
+  }
+  CHECK(snapshot(dir.work()).empty());
+}
+
+TEST_CASE("cli help: prints the usage on stdout", "[cli]") {
+  TempDir dir;
+  const CliResult result = run_ok(dir, {"--help"});
+  CHECK(contains(result.out, "dabench solve"));
+  CHECK(contains(result.out, "dabench run"));
+}
