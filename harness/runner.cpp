@@ -99,6 +99,7 @@ class Execution {
     const auto start = Clock::now();
     RandomStream rng(plan_.seed, point, trial);
     scenarios_[point]->generate(rng, worker.sample);
+    worker.sample.problem.trial_key = {plan_.seed, point, trial};
     const SingleScanProblem& problem = worker.sample.problem;
     const std::size_t count = worker.solvers.size();
     for (std::size_t a = 0; a < count; ++a) {

@@ -8,6 +8,7 @@
 // any problem can be brought to the ψ_i(0) = 1 form by ψ_i(j) = w_ij / (w_i0 · w_0j), which
 // leaves the posterior over association events unchanged (see normalized_weight()).
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -21,11 +22,21 @@ struct ScanContext {
   double lambda_fa = std::numeric_limits<double>::quiet_NaN();  // false-alarm density
 };
 
+// Identity of the trial a problem belongs to. Stochastic algorithms (MCMCDA) draw from
+// RandomStream(mix(seed, their own seed option), point, trial), so their output depends only
+// on the trial, never on the thread that runs it. `dabench solve` uses {0, 0, 0}.
+struct TrialKey {
+  std::uint64_t seed = 0;
+  std::uint32_t point = 0;
+  std::uint32_t trial = 0;
+};
+
 struct SingleScanProblem {
   RowMatrix psi;           // n×m, ψ_i(j) (or w_ij when miss/clutter weights are not 1)
   Vector miss_weight;      // size n (w_i0) or empty = all ones
   Vector clutter_weight;   // size m (w_0j) or empty = all ones
   ScanContext context;
+  TrialKey trial_key;
 
   int targets() const { return static_cast<int>(psi.rows()); }
   int measurements() const { return static_cast<int>(psi.cols()); }
