@@ -188,7 +188,7 @@ Experiment load_experiment(const std::string& path) {
     } else if (key == "output") {
       experiment.output = value;
     } else if (key == "reference") {
-      experiment.reference = value;
+      experiment.references.push_back(value);
     } else if (key == "algorithm") {
       experiment.algorithms.push_back(value);
     } else {
@@ -198,7 +198,7 @@ Experiment load_experiment(const std::string& path) {
   }
   if (experiment.scenario.empty()) throw InputError(fmt::format("{}: missing 'scenario = NAME'", path));
   if (!seen_trials) throw InputError(fmt::format("{}: missing 'trials = N'", path));
-  if (experiment.algorithms.empty() && experiment.reference.empty()) {
+  if (experiment.algorithms.empty() && experiment.references.empty()) {
     throw InputError(fmt::format("{}: no 'algorithm = SPEC' line", path));
   }
   if (experiment.output.empty()) experiment.output = "results/" + experiment.name;

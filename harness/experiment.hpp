@@ -7,7 +7,9 @@
 //   trials = 200                      # Monte Carlo trials per sweep point
 //   seed = 1                          # master seed (uint64)
 //   output = results/quickstart       # output folder (relative to the working directory)
-//   reference = exact                 # SPEC the errors are measured against
+//   reference = exact                 # SPEC the errors are measured against; more reference
+//   reference = mcmcda:samples=1e7    #   lines are fallbacks, run only when the ones before
+//                                     #   were skipped (e.g. a work limit)
 //   algorithm = bp                    # one line per algorithm SPEC (variants allowed)
 //   algorithm = bp:delta=1e-6
 //
@@ -37,7 +39,7 @@ struct Experiment {
   std::int64_t trials = 0;
   std::uint64_t seed = 1;
   std::string output;
-  std::string reference;
+  std::vector<std::string> references;  // first that succeeds in a trial is the reference
   std::vector<std::string> algorithms;
   std::vector<std::string> swept_keys;         // parameters that some block sweeps
   std::vector<std::vector<KeyValue>> points;   // scenario settings of each point (fixed + swept)

@@ -68,10 +68,14 @@ RunPlan make_run_plan(const RunOptions& options) {
   }
   plan.point_settings = experiment.points;
 
-  if (!experiment.reference.empty()) {
-    plan.specs.push_back(std::string(trim(experiment.reference)));
-    plan.has_reference = true;
+  for (const std::string& spec : experiment.references) {
+    const std::string text(trim(spec));
+    for (const auto& known : plan.specs) {
+      if (known == text) throw InputError(fmt::format("{}: reference '{}' given twice", path, text));
+    }
+    plan.specs.push_back(text);
   }
+  plan.references = static_cast<int>(plan.specs.size());
   for (const std::string& spec : experiment.algorithms) {
     const std::string text(trim(spec));
     bool duplicate = false;

@@ -14,8 +14,8 @@ struct RunPlan {
   Experiment experiment;
   std::vector<std::vector<KeyValue>> point_settings;  // as written (fixed + swept)
   std::vector<std::vector<KeyValue>> point_params;    // every scenario parameter, effective value
-  std::vector<std::string> specs;                     // reference (if any) first, then algorithms
-  bool has_reference = false;
+  std::vector<std::string> specs;                     // references first, then algorithms
+  int references = 0;                                 // how many leading specs are references
   std::int64_t trials = 0;
   std::uint64_t seed = 0;
   int threads = 1;

@@ -102,8 +102,16 @@ class Execution {
     worker.sample.problem.trial_key = {plan_.seed, point, trial};
     const SingleScanProblem& problem = worker.sample.problem;
     const std::size_t count = worker.solvers.size();
+    const auto references = static_cast<std::size_t>(plan_.references);
+    std::size_t reference = count;  // index of the reference used in this trial (count = none)
     for (std::size_t a = 0; a < count; ++a) {
       SolveReport& report = worker.reports[a];
+      if (a < references && reference < count) {  // a fallback reference that is not needed
+        report.reset();
+        report.skipped = "not_needed";
+        worker.time_us[a] = std::numeric_limits<double>::quiet_NaN();
+        continue;
+      }
       const auto t0 = Clock::now();
       try {
         worker.solvers[a]->solve(problem, worker.marginals[a], report);
@@ -111,10 +119,10 @@ class Execution {
         report.skipped = std::string("failed:") + error.what();
       }
       worker.time_us[a] = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+      if (a < references && report.skipped.empty()) reference = a;
     }
     worker.busy_seconds += std::chrono::duration<double>(Clock::now() - start).count();
 
-    const bool reference_ok = plan_.has_reference && worker.reports[0].skipped.empty();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (std::size_t a = 0; a < count; ++a) {
       const SolveReport& report = worker.reports[a];
@@ -130,7 +138,9 @@ class Execution {
       }
       fmt::format_to(std::back_inserter(row), ",{},{}", problem.targets(), problem.measurements());
       MarginalErrors errors{nan, nan};
-      if (ok && reference_ok && problem.targets() > 0) errors = marginal_errors(worker.marginals[a], worker.marginals[0]);
+      if (ok && reference < count && problem.targets() > 0) {
+        errors = marginal_errors(worker.marginals[a], worker.marginals[reference]);
+      }
       append_number(row, errors.max_error);
       append_number(row, errors.mean_error);
       append_number(row, worker.time_us[a]);
@@ -161,9 +171,13 @@ std::string meta_json(const RunPlan& plan, const RunOptions& options, const std:
                       const std::string& status, long long items_done, double wall_seconds, double work_fraction,
                       bool resumed) {
   const BuildInfo& build = build_info();
-  std::string specs = "[";
-  for (std::size_t a = 0; a < plan.specs.size(); ++a) specs += (a ? ", " : "") + JsonObject::quote(plan.specs[a]);
-  specs += "]";
+  const auto json_list = [](auto begin, auto end) {
+    std::string list = "[";
+    for (auto it = begin; it != end; ++it) list += (it == begin ? "" : ", ") + JsonObject::quote(*it);
+    return list + "]";
+  };
+  const std::string specs = json_list(plan.specs.begin() + plan.references, plan.specs.end());
+  const std::string references = json_list(plan.specs.begin(), plan.specs.begin() + plan.references);
   JsonObject meta;
   meta.add("schema", "dabench-run-1")
       .add("status", status)
@@ -179,7 +193,7 @@ std::string meta_json(const RunPlan& plan, const RunOptions& options, const std:
       .add("items_total", plan.items())
       .add("items_done", items_done)
       .add_raw("algorithms", specs)
-      .add("reference", plan.has_reference ? plan.specs.front() : std::string())
+      .add_raw("references", references)
       .add("git_commit", build.git_commit)
       .add("compiler", build.compiler)
       .add("flags", build.flags)

@@ -112,7 +112,7 @@ TEST_CASE("experiment: a complete file is read key by key", "[experiment]") {
   CHECK(e.trials == 25);
   CHECK(e.seed == 1234);
   CHECK(e.output == "somewhere/else");
-  CHECK(e.reference == "exact");
+  CHECK(e.references == std::vector<std::string>{"exact"});
   CHECK(e.algorithms == Strings{"bp", "bp:delta=1e-6,check_every=10", "bp:delta=1e-6"});
   CHECK(e.swept_keys == Strings{"rows", "spacing", "pd"});
 
@@ -136,7 +136,7 @@ TEST_CASE("experiment: defaults for name output seed and points", "[experiment]"
     CHECK(e.output == "results/my_study.v2");
     CHECK(e.description.empty());
     CHECK(e.seed == 1);
-    CHECK(e.reference.empty());
+    CHECK(e.references.empty());
     CHECK(e.swept_keys.empty());
     REQUIRE(e.points.size() == 1);
     CHECK(e.points[0].size() == 1);
@@ -161,7 +161,7 @@ TEST_CASE("experiment: defaults for name output seed and points", "[experiment]"
     write_text(path, "scenario = grid\ntrials = 1\nreference = exact\n");
     const Experiment e = load_experiment(path.string());
     CHECK(e.algorithms.empty());
-    CHECK(e.reference == "exact");
+    CHECK(e.references == std::vector<std::string>{"exact"});
   }
 }
 

@@ -523,3 +523,43 @@ TEST_CASE("run: the command suggested after an interrupted --force run finishes 
   CHECK(words[0] == DABENCH_BINARY);
   run_ok(dir, std::vector<std::string>(words.begin() + 1, words.end()));
 }
+
+TEST_CASE("run: fallback references run only when the ones before them are skipped", "[run]") {
+  // The first reference refuses every problem with more than a handful of events; the second
+  // (plain exact) takes over exactly then. Errors are always measured against the one used.
+  TempDir dir;
+  dir.write("fallback.ini",
+            "scenario = grid\n"
+            "trials = 30\n"
+            "seed = 5\n"
+            "reference = exact:max_events=20\n"
+            "reference = exact\n"
+            "algorithm = bp\n"
+            "[sweep]\n"
+            "spacing = 0, 10\n");
+  run_ok(dir, {"run", "fallback.ini", "--out", "o"});
+  const CsvTable trials = read_csv(dir, "o/trials.csv");
+  REQUIRE(trials.rows.size() == 2u * 30u * 3u);
+  int primary_used = 0, fallback_used = 0;
+  for (std::size_t r = 0; r < trials.rows.size(); r += 3) {
+    const std::string primary = trials.at(r, "status");
+    const std::string fallback = trials.at(r + 1, "status");
+    REQUIRE(trials.at(r, "algorithm") == "exact:max_events=20");
+    REQUIRE(trials.at(r + 1, "algorithm") == "exact");
+    REQUIRE(trials.at(r + 2, "algorithm") == "bp");
+    if (primary == "ok") {
+      ++primary_used;
+      CHECK(fallback == "skipped:not_needed");
+      CHECK(trials.at(r + 1, "max_error").empty());
+      CHECK(trials.at(r, "max_error") == "0");
+    } else {
+      ++fallback_used;
+      CHECK(primary == "skipped:work_limit");
+      CHECK(fallback == "ok");
+      CHECK(trials.at(r + 1, "max_error") == "0");
+    }
+    CHECK(!trials.at(r + 2, "max_error").empty());  // bp always has a reference to compare with
+  }
+  CHECK(primary_used > 10);   // wide spacing: tiny clusters
+  CHECK(fallback_used > 10);  // spacing 0: six targets in one cluster
+}
