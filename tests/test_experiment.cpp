@@ -12,30 +12,19 @@
 #include <utility>
 #include <vector>
 
+#include "tests/support/input_error.hpp"
 #include "harness/errors.hpp"
 #include "harness/experiment.hpp"
 #include "tests/support/cli_runner.hpp"
 
 using namespace dabench;
 using namespace dabench::test::cli;
+using dabench::test::input_error_message;
 namespace fs = std::filesystem;
 
 namespace {
 
 using Strings = std::vector<std::string>;
-
-template <class Action>
-std::string input_error_message(Action&& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  } catch (const std::exception& error) {
-    FAIL("expected dabench::InputError, got: " << error.what());
-  }
-  FAIL("expected dabench::InputError, nothing was thrown");
-  return {};
-}
 
 // The value of `key` in a point's settings, or "<unset>".
 std::string value(const std::vector<KeyValue>& settings, const std::string& key) {

@@ -10,27 +10,16 @@
 #include <utility>
 #include <vector>
 
+#include "tests/support/input_error.hpp"
 #include "harness/errors.hpp"
 #include "harness/params.hpp"
 #include "harness/registry.hpp"
 
 using namespace dabench;
 
-namespace {
+using dabench::test::input_error_message;
 
-// Runs `action`, requires an InputError, and returns its message.
-template <class Action>
-std::string input_error_message(Action&& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  } catch (const std::exception& error) {
-    FAIL("expected dabench::InputError, got another exception: " << error.what());
-  }
-  FAIL("expected dabench::InputError, nothing was thrown");
-  return {};
-}
+namespace {
 
 std::string spec_error(const std::string& text) {
   return input_error_message([&] { parse_spec(text); });

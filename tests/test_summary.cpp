@@ -14,30 +14,19 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/input_error.hpp"
 #include "harness/errors.hpp"
 #include "harness/summary.hpp"
 #include "tests/support/cli_runner.hpp"
 
 using namespace dabench;
 using namespace dabench::test::cli;
+using dabench::test::input_error_message;
 namespace fs = std::filesystem;
 
 namespace {
 
 const fs::path kData = fs::path(DABENCH_SOURCE_DIR) / "tests" / "data";
-
-template <class Action>
-std::string input_error_message(Action&& action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  } catch (const std::exception& error) {
-    FAIL("expected dabench::InputError, got: " << error.what());
-  }
-  FAIL("expected dabench::InputError, nothing was thrown");
-  return {};
-}
 
 double cell(const CsvTable& table, std::size_t row, const std::string& column) {
   return to_double(table.at(row, column));
