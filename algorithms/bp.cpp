@@ -18,11 +18,6 @@ std::string BpOptions::validate() const {
 
 namespace {
 
-// ψ_i(j) in the ψ_i(0) = 1 normalisation.
-inline double weight(const SingleScanProblem& problem, bool unit, int i, int j) {
-  return unit ? problem.psi(i, j) : problem.normalized_weight(i, j);
-}
-
 // One BP iteration over the shared edges. The flat loops with indexed loads vectorise (AVX2
 // gathers where the CPU has them: one clone per ISA, chosen at load time); the arithmetic and
 // its order are the same in every clone, so results are bit-identical on every machine.
@@ -81,15 +76,24 @@ __attribute__((target_clones("avx2", "default"))) void bp_iteration_dense(
 double BeliefPropagation::build_edges(const SingleScanProblem& problem) {
   const int n = problem.targets();
   const int m = problem.measurements();
-  const bool unit = problem.has_unit_side_weights();
+  // ψ_i(j) in the ψ_i(0) = 1 normalisation, row-major n×m.
+  if (problem.has_unit_side_weights()) {
+    weights_ = problem.psi.data();
+  } else {
+    normalized_.resize(static_cast<std::size_t>(n) * m);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < m; ++j) normalized_[static_cast<std::size_t>(i) * m + j] = problem.normalized_weight(i, j);
+    }
+    weights_ = normalized_.data();
+  }
   column_degree_.assign(m, 0);
   double w_star = 0.0;  // W* = max_i Σ_j ψ_i(j) (Lemma 2)
   for (int i = 0; i < n; ++i) {
+    const double* row = weights_ + static_cast<std::size_t>(i) * m;
     double w = 0.0;
     for (int j = 0; j < m; ++j) {
-      const double psi = weight(problem, unit, i, j);
-      w += psi;
-      column_degree_[j] += psi > 0.0;
+      w += row[j];
+      column_degree_[j] += row[j] > 0.0;
     }
     w_star = std::max(w_star, w);
   }
@@ -106,10 +110,11 @@ double BeliefPropagation::build_edges(const SingleScanProblem& problem) {
   active_of_target_.assign(n, -1);
   if (shared_columns > 0) {
     for (int i = 0; i < n; ++i) {
+      const double* row = weights_ + static_cast<std::size_t>(i) * m;
       double base = 1.0;
       const std::size_t first = psi_.size();
       for (int j = 0; j < m; ++j) {
-        const double psi = weight(problem, unit, i, j);
+        const double psi = row[j];
         if (!(psi > 0.0)) continue;
         if (compact_column_[j] < 0) {
           base += psi;  // exclusive measurement: ν ≡ 1
@@ -180,19 +185,17 @@ bool BeliefPropagation::converged() const {
   return alpha * d / (1.0 - alpha) < stop_level_;
 }
 
-void BeliefPropagation::write_beliefs(const SingleScanProblem& problem, MarginalTable& marginals) const {
+void BeliefPropagation::write_beliefs(int n, int m, MarginalTable& marginals) const {
   // Beliefs, eq (22): p_ij = ψ_ij ν_ji / s, p_i0 = 1/s, s = 1 + Σ_j ψ_ij ν_ji.
-  const int n = problem.targets();
-  const int m = problem.measurements();
-  const bool unit = problem.has_unit_side_weights();
   marginals.reshape(n, m);
   for (int i = 0; i < n; ++i) {
+    const double* weights = weights_ + static_cast<std::size_t>(i) * m;
     double* row = marginals.row(i);
     const int a = active_of_target_[i];
     int edge = a < 0 ? 0 : active_begin_[a];  // shared edges of i, in measurement order
     double s = 1.0;
     for (int j = 0; j < m; ++j) {
-      const double psi = weight(problem, unit, i, j);
+      const double psi = weights[j];
       double value = 0.0;
       if (psi > 0.0) value = compact_column_[j] < 0 ? psi : psi * nu_[dense_ ? edge_cell_[edge++] : edge++];
       row[j + 1] = value;
@@ -222,7 +225,7 @@ void BeliefPropagation::solve(const SingleScanProblem& problem, MarginalTable& m
   }
   report.iterations = iterations;
   report.converged = done;
-  write_beliefs(problem, marginals);
+  write_beliefs(problem.targets(), problem.measurements(), marginals);
 }
 
 DABENCH_REGISTER_SINGLE_SCAN(BeliefPropagation);

@@ -55,13 +55,15 @@ class BeliefPropagation final : public SingleScanSolver {
   double build_edges(const SingleScanProblem& problem);  // returns W*
   void iterate_once();
   bool converged() const;  // Theorem-3 test on ν against ν̃
-  void write_beliefs(const SingleScanProblem& problem, MarginalTable& marginals) const;
+  void write_beliefs(int targets, int measurements, MarginalTable& marginals) const;
 
   Options options_;
   double w_star_ = 0.0;
   bool dense_ = false;               // iterate on the dense block (else on the edge lists)
   int stride_ = 0;                   // dense row stride: shared measurements rounded up to 4
   double stop_level_ = 0.0;          // ½ log(1 + δ)
+  const double* weights_ = nullptr;  // normalised ψ of the current problem, row-major n×m
+  std::vector<double> normalized_;   // storage for it when side weights are not all 1
   std::vector<int> column_degree_;   // gated targets per measurement
   std::vector<int> compact_column_;  // measurement → shared-measurement index, or -1
   // Targets with at least one shared measurement ("active"); their shared edges are stored
