@@ -1,0 +1,94 @@
+#include "algorithms/baa.hpp"
+
+#include <algorithm>
+
+#include "harness/registry.hpp"
+
+namespace dabench {
+
+// Groups the edges of graph_ by measurement (counting sort; targets stay in increasing order).
+void BakhtiarAlaviAmoozegar::build_columns() {
+  const int m = graph_.measurements();
+  column_start_.assign(m + 1, 0);
+  for (int j = 0; j < m; ++j) column_start_[j + 1] = column_start_[j] + graph_.measurement_degree(j);
+  next_slot_.assign(column_start_.begin(), column_start_.end() - 1);
+  column_edge_.resize(graph_.edges());
+  for (int e = 0; e < graph_.edges(); ++e) column_edge_[next_slot_[graph_.edge_measurement(e)]++] = e;
+}
+
+void BakhtiarAlaviAmoozegar::solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) {
+  report.reset();
+  graph_.build(problem);
+  const int n = graph_.targets();
+  const int m = graph_.measurements();
+  const int edges = graph_.edges();
+  marginals.reshape_zero(n, m);
+
+  bool shared = false;
+  for (int j = 0; j < m && !shared; ++j) shared = graph_.measurement_degree(j) >= 2;
+  product_.assign(edges, 1.0);
+  if (shared) {
+    // f_ij = (1 + Σ_{k≠j} ψ_ik) / (1 + Σ_k ψ_ik), on weights scaled by 1/max(1, max_k ψ_ik):
+    // prefix sums forwards (stored in factor_), suffix sums backwards.
+    factor_.resize(edges);
+    for (int i = 0; i < n; ++i) {
+      const int begin = graph_.row_begin(i);
+      const int end = graph_.row_end(i);
+      double largest = 1.0;
+      for (int e = begin; e < end; ++e) largest = std::max(largest, graph_.edge_weight(e));
+      const double scale = 1.0 / largest;
+      double run = 0.0;
+      for (int e = begin; e < end; ++e) {
+        factor_[e] = run;
+        run += graph_.edge_weight(e) * scale;
+      }
+      const double inverse_total = 1.0 / (scale + run);  // 1 / (scaled S_i)
+      run = 0.0;
+      for (int e = end; e-- > begin;) {
+        factor_[e] = (scale + factor_[e] + run) * inverse_total;
+        run += graph_.edge_weight(e) * scale;
+      }
+    }
+    // Π_{i≠t} f_ij per edge (t, j): leave-one-out products over the targets gated to j.
+    build_columns();
+    for (int j = 0; j < m; ++j) {
+      const int begin = column_start_[j];
+      const int end = column_start_[j + 1];
+      if (end - begin < 2) continue;
+      double run = 1.0;
+      for (int k = begin; k < end; ++k) {
+        const int e = column_edge_[k];
+        product_[e] = run;
+        run *= factor_[e];
+      }
+      run = 1.0;
+      for (int k = end; k-- > begin;) {
+        const int e = column_edge_[k];
+        product_[e] *= run;
+        run *= factor_[e];
+      }
+    }
+  }
+
+  // β_tj / β_t0 = ψ_tj · Π_{i≠t} f_ij; rows normalised on weights scaled by 1/max(1, largest).
+  for (int t = 0; t < n; ++t) {
+    const int begin = graph_.row_begin(t);
+    const int end = graph_.row_end(t);
+    double* row = marginals.row(t);
+    double largest = 1.0;
+    for (int e = begin; e < end; ++e) {
+      product_[e] *= graph_.edge_weight(e);
+      largest = std::max(largest, product_[e]);
+    }
+    const double scale = 1.0 / largest;
+    double total = scale;
+    for (int e = begin; e < end; ++e) total += product_[e] * scale;
+    const double inverse = 1.0 / total;
+    row[0] = scale * inverse;
+    for (int e = begin; e < end; ++e) row[graph_.edge_measurement(e) + 1] = product_[e] * scale * inverse;
+  }
+}
+
+DABENCH_REGISTER_SINGLE_SCAN(BakhtiarAlaviAmoozegar);
+
+}  // namespace dabench

@@ -1,0 +1,110 @@
+#include "algorithms/lmipda.hpp"
+
+#include <algorithm>
+
+#include "harness/registry.hpp"
+
+namespace dabench {
+
+std::string LmipdaOptions::validate() const {
+  if (!std::isnan(pd) && !(pd > 0.0 && pd < 1.0)) return "pd must be in (0, 1) (or left unset)";
+  if (!(pg > 0.0 && pg <= 1.0)) return "pg must be in (0, 1]";
+  return {};
+}
+
+// Groups the edges of graph_ by measurement (counting sort; targets stay in increasing order).
+void Lmipda::build_columns() {
+  const int m = graph_.measurements();
+  column_start_.assign(m + 1, 0);
+  for (int j = 0; j < m; ++j) column_start_[j + 1] = column_start_[j] + graph_.measurement_degree(j);
+  next_slot_.assign(column_start_.begin(), column_start_.end() - 1);
+  column_edge_.resize(graph_.edges());
+  for (int e = 0; e < graph_.edges(); ++e) column_edge_[next_slot_[graph_.edge_measurement(e)]++] = e;
+}
+
+void Lmipda::solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) {
+  report.reset();
+  graph_.build(problem);
+  const int n = graph_.targets();
+  const int m = graph_.measurements();
+  const int edges = graph_.edges();
+
+  bool shared = false;
+  for (int j = 0; j < m && !shared; ++j) shared = graph_.measurement_degree(j) >= 2;
+  const double pd = std::isnan(options_.pd) ? problem.context.pd : options_.pd;
+  const bool pd_known = pd > 0.0 && pd < 1.0;  // false for NaN
+  const double pg = options_.pg;
+  if ((shared || (pg < 1.0 && edges > 0)) && !pd_known) {
+    report.skipped = "needs_pd";
+    return;
+  }
+  marginals.reshape_zero(n, m);
+
+  // β_τi/β_τ0 = ψ_τi · gain / (1 + spread · Σ_{η≠τ} clutter_share_ηi).
+  const double gain = pg < 1.0 ? (1.0 - pd) / (1.0 - pd * pg) : 1.0;
+  others_.assign(edges, 0.0);
+  if (shared) {
+    const double pdpg = pd * pg;
+    const double spread = (1.0 - pd) / pdpg;
+    // P^η_i = Pd·Pg·ψ_ηi / Σ_j ψ_ηj (row sums on scaled weights), and the share of measurement i
+    // that track η contributes to every other track's modulated clutter density (over ρ_i).
+    clutter_share_.resize(edges);
+    for (int i = 0; i < n; ++i) {
+      const int begin = graph_.row_begin(i);
+      const int end = graph_.row_end(i);
+      double largest = 1.0;
+      for (int e = begin; e < end; ++e) largest = std::max(largest, graph_.edge_weight(e));
+      const double scale = 1.0 / largest;
+      double total = 0.0;
+      for (int e = begin; e < end; ++e) total += graph_.edge_weight(e) * scale;
+      for (int e = begin; e < end; ++e) {
+        const double psi = graph_.edge_weight(e);
+        const double prior = pdpg * (psi * scale / total);  // P^η_i ≤ Pd·Pg < 1
+        clutter_share_[e] = spread * psi * (prior / (1.0 - prior));
+      }
+    }
+    // Leave-one-out sums per measurement: prefix sums forwards, then suffix sums backwards.
+    build_columns();
+    for (int j = 0; j < m; ++j) {
+      const int begin = column_start_[j];
+      const int end = column_start_[j + 1];
+      if (end - begin < 2) continue;
+      double run = 0.0;
+      for (int k = begin; k < end; ++k) {
+        const int e = column_edge_[k];
+        others_[e] = run;
+        run += clutter_share_[e];
+      }
+      run = 0.0;
+      for (int k = end; k-- > begin;) {
+        const int e = column_edge_[k];
+        others_[e] += run;
+        run += clutter_share_[e];
+      }
+    }
+  }
+
+  // PDA per track with the modulated clutter density; rows normalised on weights scaled by
+  // 1/max(1, largest weight) so that no finite ψ overflows the sum.
+  for (int i = 0; i < n; ++i) {
+    const int begin = graph_.row_begin(i);
+    const int end = graph_.row_end(i);
+    double* row = marginals.row(i);
+    double largest = 1.0;
+    for (int e = begin; e < end; ++e) {
+      const double weight = gain * graph_.edge_weight(e) / (1.0 + others_[e]);
+      others_[e] = weight;  // reused as the unnormalised association weight
+      largest = std::max(largest, weight);
+    }
+    const double scale = 1.0 / largest;
+    double total = scale;
+    for (int e = begin; e < end; ++e) total += others_[e] * scale;
+    const double inverse = 1.0 / total;
+    row[0] = scale * inverse;
+    for (int e = begin; e < end; ++e) row[graph_.edge_measurement(e) + 1] = others_[e] * scale * inverse;
+  }
+}
+
+DABENCH_REGISTER_SINGLE_SCAN(Lmipda);
+
+}  // namespace dabench
