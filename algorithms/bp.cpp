@@ -18,6 +18,11 @@ std::string BpOptions::validate() const {
 
 namespace {
 
+template <class T>
+void grow(std::vector<T>& buffer, std::size_t size) {
+  if (buffer.size() < size) buffer.resize(size);
+}
+
 // One BP iteration over the shared edges. The flat loops with indexed loads vectorise (AVX2
 // gathers where the CPU has them: one clone per ISA, chosen at load time); the arithmetic and
 // its order are the same in every clone, so results are bit-identical on every machine.
@@ -101,74 +106,79 @@ double BeliefPropagation::build_edges(const SingleScanProblem& problem) {
   int shared_columns = 0;
   for (int j = 0; j < m; ++j) compact_column_[j] = column_degree_[j] > 1 ? shared_columns++ : -1;
 
-  active_target_.clear();
-  active_begin_.assign(1, 0);
-  base_.clear();
-  psi_.clear();
-  row_.clear();
-  column_.clear();
+  // Shared edges, target by target. Buffers only grow, so steady-state solves do not allocate.
+  grow(active_target_, n);
+  grow(active_begin_, n + 1);
+  grow(base_, n);
+  grow(psi_, static_cast<std::size_t>(n) * m);
+  grow(row_, static_cast<std::size_t>(n) * m);
+  grow(column_, static_cast<std::size_t>(n) * m);
   active_of_target_.assign(n, -1);
+  int edges = 0, active = 0;
+  active_begin_[0] = 0;
   if (shared_columns > 0) {
     for (int i = 0; i < n; ++i) {
       const double* row = weights_ + static_cast<std::size_t>(i) * m;
       double base = 1.0;
-      const std::size_t first = psi_.size();
+      const int first = edges;
       for (int j = 0; j < m; ++j) {
         const double psi = row[j];
         if (!(psi > 0.0)) continue;
-        if (compact_column_[j] < 0) {
+        const int c = compact_column_[j];
+        if (c < 0) {
           base += psi;  // exclusive measurement: ν ≡ 1
         } else {
-          psi_.push_back(psi);
-          row_.push_back(static_cast<int>(active_target_.size()));
-          column_.push_back(compact_column_[j]);
+          psi_[edges] = psi;
+          row_[edges] = active;
+          column_[edges++] = c;
         }
       }
-      if (psi_.size() != first) {
-        active_of_target_[i] = static_cast<int>(active_target_.size());
-        active_target_.push_back(i);
-        active_begin_.push_back(static_cast<int>(psi_.size()));
-        base_.push_back(base);
+      if (edges != first) {
+        active_of_target_[i] = active;
+        active_target_[active] = i;
+        base_[active++] = base;
+        active_begin_[active] = edges;
       }
     }
   }
-  const int edges = static_cast<int>(psi_.size());
-  const int active = static_cast<int>(active_target_.size());
+  edges_ = edges;
+  active_ = active;
   stride_ = (shared_columns + 3) / 4 * 4;
   dense_ = edges > 0 && active * stride_ <= options_.dense_cells && active * stride_ <= 4 * edges;
-  const int cells = dense_ ? active * stride_ : edges;
+  cells_ = dense_ ? active * stride_ : edges;
   if (dense_) {
-    edge_cell_.resize(edges);
-    block_psi_.assign(cells, 0.0);
-    block_product_.resize(cells);
+    grow(edge_cell_, edges);
+    grow(block_psi_, cells_);
+    grow(block_product_, cells_);
+    std::fill_n(block_psi_.begin(), cells_, 0.0);
     for (int e = 0; e < edges; ++e) {
       edge_cell_[e] = row_[e] * stride_ + column_[e];
       block_psi_[edge_cell_[e]] = psi_[e];
     }
   }
-  nu_.assign(cells, 1.0);  // ν_{j→i,0} = 1 (Fig. 3)
-  mu_.resize(cells);
-  nu_previous_.resize(cells);
-  row_sum_.resize(active);
-  column_sum_.resize(dense_ ? stride_ : shared_columns);
+  grow(nu_, cells_);
+  grow(mu_, cells_);
+  grow(nu_previous_, cells_);
+  std::fill_n(nu_.begin(), cells_, 1.0);  // ν_{j→i,0} = 1 (Fig. 3)
+  grow(row_sum_, active);
+  columns_ = dense_ ? stride_ : shared_columns;
+  grow(column_sum_, columns_);
   return w_star;
 }
 
 void BeliefPropagation::iterate_once() {
   if (dense_) {
-    bp_iteration_dense(static_cast<int>(active_target_.size()), stride_, base_.data(), block_psi_.data(),
-                       block_product_.data(), column_sum_.data(), mu_.data(), nu_.data());
+    bp_iteration_dense(active_, stride_, base_.data(), block_psi_.data(), block_product_.data(), column_sum_.data(),
+                       mu_.data(), nu_.data());
     return;
   }
-  bp_iteration(static_cast<int>(active_target_.size()), static_cast<int>(psi_.size()),
-               static_cast<int>(column_sum_.size()), active_begin_.data(), base_.data(), psi_.data(), row_.data(),
-               column_.data(), row_sum_.data(), column_sum_.data(), mu_.data(), nu_.data());
+  bp_iteration(active_, edges_, columns_, active_begin_.data(), base_.data(), psi_.data(), row_.data(), column_.data(),
+               row_sum_.data(), column_sum_.data(), mu_.data(), nu_.data());
 }
 
 bool BeliefPropagation::converged() const {
   double largest = 1.0, smallest = 1.0;  // extreme ratios ν/ν̃; d = log max(largest, 1/smallest)
-  const int edges = static_cast<int>(psi_.size());
-  for (int e = 0; e < edges; ++e) {
+  for (int e = 0; e < edges_; ++e) {
     const int cell = dense_ ? edge_cell_[e] : e;  // cells without an edge are not messages
     const double ratio = nu_[cell] / nu_previous_[cell];
     largest = std::max(largest, ratio);
@@ -214,11 +224,11 @@ void BeliefPropagation::solve(const SingleScanProblem& problem, MarginalTable& m
   report.w_star = w_star_;
 
   int iterations = 0;
-  bool done = psi_.empty();  // no measurement shared by two targets: the graph is a forest
+  bool done = edges_ == 0;  // no measurement shared by two targets: the graph is a forest
   while (!done && iterations < options_.max_iterations) {
     const int block = std::min(options_.check_every, options_.max_iterations - iterations);
     for (int k = 1; k < block; ++k) iterate_once();
-    std::copy(nu_.begin(), nu_.end(), nu_previous_.begin());  // ν̃ of Fig. 3
+    std::copy_n(nu_.begin(), cells_, nu_previous_.begin());  // ν̃ of Fig. 3
     iterate_once();
     iterations += block;
     done = converged();

@@ -61,6 +61,11 @@ class BeliefPropagation final : public SingleScanSolver {
   double w_star_ = 0.0;
   bool dense_ = false;               // iterate on the dense block (else on the edge lists)
   int stride_ = 0;                   // dense row stride: shared measurements rounded up to 4
+  int edges_ = 0;                    // shared edges of the current problem
+  int active_ = 0;                   // targets with a shared edge
+  int cells_ = 0;                    // message slots: edges, or block cells in dense mode
+  int columns_ = 0;                  // column sums in use (shared measurements or stride)
+  // The buffers below only grow; the counts above say how much of each is in use.
   double stop_level_ = 0.0;          // ½ log(1 + δ)
   const double* weights_ = nullptr;  // normalised ψ of the current problem, row-major n×m
   std::vector<double> normalized_;   // storage for it when side weights are not all 1
