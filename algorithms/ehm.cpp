@@ -105,6 +105,7 @@ void Ehm::solve(const SingleScanProblem& problem, MarginalTable& marginals, Solv
     const char* reason = solve_cluster(graph_.cluster_start(c), graph_.cluster_start(c + 1), marginals);
     if (reason[0] != '\0') {
       report.skipped = reason;
+      stats_.nodes = nodes_total_;
       return;
     }
   }
@@ -197,17 +198,23 @@ const char* Ehm::solve_cluster(int first, int last, MarginalTable& marginals) {
   return ok ? "" : "work_limit";
 }
 
-// Frontier sizes of a target order: after k targets, the shared measurements gated by one of
-// them and by a later target (the key space of plain EHM's layer k). Returns Σ_k 2^frontier,
-// an estimate of the net's size, and the widest frontier in `widest`.
+// Estimated net size of a target order. After k targets the frontier F_k is the set of shared
+// measurements gated by one of them and by a later target (plain EHM's key space); the layer
+// holds at most 2^|F_k| used-sets, and at most Π_i (1 + f_i) over the processed targets i, f_i
+// = how many frontier measurements i gates (each target uses at most one). The estimate is
+// Σ_k min of the two (the product term is skipped on clusters above 400 targets, where its
+// O(K²·gate) cost would matter). Returns it, and the widest frontier in `widest`.
 double Ehm::order_cost(const std::vector<int>& order, int& widest) {
+  const int size = cluster_size_;
   count_.resize(shared_);
   for (int j = 0; j < shared_; ++j) count_[j] = meas_begin_[j + 1] - meas_begin_[j];
   touched_.assign(shared_, 0);
+  const bool product = size <= 400;
   int frontier = 0;
   double cost = 0.0;
   widest = 0;
-  for (const int li : order) {
+  for (int k = 0; k < size; ++k) {
+    const int li = order[k];
     for (int g = gate_begin_[li]; g < gate_begin_[li + 1]; ++g) {
       const int j = gate_meas_[g];
       frontier -= static_cast<int>(touched_[j] && count_[j] > 0);
@@ -216,14 +223,24 @@ double Ehm::order_cost(const std::vector<int>& order, int& widest) {
       frontier += static_cast<int>(count_[j] > 0);
     }
     widest = std::max(widest, frontier);
-    cost += std::ldexp(1.0, std::min(frontier, 1000));
+    double log_width = std::min(frontier, 1000) * std::log(2.0);
+    if (product) {
+      double log_product = 0.0;
+      for (int q = 0; q <= k; ++q) {
+        int live = 0;
+        for (int g = gate_begin_[order[q]]; g < gate_begin_[order[q] + 1]; ++g) live += count_[gate_meas_[g]] > 0;
+        log_product += std::log1p(live);
+      }
+      log_width = std::min(log_width, log_product);
+    }
+    cost += std::exp(log_width);
   }
   return cost;
 }
 
 // order = 0: the cheapest (by order_cost) of the Cuthill–McKee order, greedy min-frontier orders
-// started by their own rule and from both ends of the BFS's pseudo-peripheral diameter, and the
-// input order. order = 1, 2, 3: greedy, BFS, input only.
+// started by their own rule, from both ends of the BFS's pseudo-peripheral diameter and after
+// the "hub" targets, and the input order. order = 1, 2, 3: greedy, BFS, input only.
 void Ehm::choose_order() {
   const int size = cluster_size_;
   auto input = [&] {
@@ -231,7 +248,10 @@ void Ehm::choose_order() {
     for (int li = 0; li < size; ++li) order_[li] = li;
   };
   switch (options_.order) {
-    case 1: order_greedy(-1); return;
+    case 1:
+      prefix_targets_.clear();
+      order_greedy(prefix_targets_);
+      return;
     case 2: order_bfs(); return;
     case 3: input(); return;
     default: break;
@@ -240,14 +260,38 @@ void Ehm::choose_order() {
   order_bfs();
   best_order_ = order_;
   double best = order_cost(order_, widest);
-  const int ends[3] = {-1, bfs_start_, order_.back()};
-  for (const int start : ends) {
-    order_greedy(start);
+  auto consider = [&] {
     const double cost = order_cost(order_, widest);
     if (cost < best) {
       best = cost;
       best_order_.swap(order_);
     }
+  };
+  const int ends[2] = {bfs_start_, order_.back()};
+  prefix_targets_.clear();
+  order_greedy(prefix_targets_);
+  consider();
+  for (const int start : ends) {
+    prefix_targets_.assign(1, start);
+    order_greedy(prefix_targets_);
+    consider();
+  }
+  // Hubs first: targets gating far more shared measurements than is typical (e.g. tracks whose
+  // gates grew after missed detections) each add at most one used measurement when processed
+  // early, but keep their whole gate in the frontier when processed in sweep order.
+  degree_.resize(size);
+  for (int li = 0; li < size; ++li) degree_[li] = gate_begin_[li + 1] - gate_begin_[li];
+  order_.assign(degree_.begin(), degree_.end());
+  std::nth_element(order_.begin(), order_.begin() + size / 2, order_.end());
+  const int median = order_[size / 2];
+  prefix_targets_.clear();
+  for (int li = 0; li < size; ++li) {
+    if (degree_[li] >= std::max(2 * median, median + 4)) prefix_targets_.push_back(li);
+  }
+  if (!prefix_targets_.empty() && static_cast<int>(prefix_targets_.size()) < size) {
+    std::stable_sort(prefix_targets_.begin(), prefix_targets_.end(), [&](int a, int b) { return degree_[a] > degree_[b]; });
+    order_greedy(prefix_targets_);
+    consider();
   }
   input();
   if (order_cost(order_, widest) < best) return;
@@ -256,16 +300,17 @@ void Ehm::choose_order() {
 
 // Greedy minimum frontier: the frontier is the set of shared measurements gated by a processed
 // target and by an unprocessed one; take the target whose addition leaves it smallest.
-void Ehm::order_greedy(int start) {
+void Ehm::order_greedy(const std::vector<int>& prefix) {
   const int size = cluster_size_;
   count_.resize(shared_);
   for (int j = 0; j < shared_; ++j) count_[j] = meas_begin_[j + 1] - meas_begin_[j];  // unprocessed gating targets
   touched_.assign(shared_, 0);
   done_.assign(size, 0);
   order_.clear();
+  const auto forced = static_cast<int>(prefix.size());
   for (int step = 0; step < size; ++step) {
     int best = -1, best_delta = INT_MAX, best_touch = -1;
-    for (int li = step == 0 && start >= 0 ? start : 0; li < size; ++li) {
+    for (int li = step < forced ? prefix[step] : 0; li < size; ++li) {
       if (done_[li]) continue;
       int delta = 0, touch = 0;
       for (int g = gate_begin_[li]; g < gate_begin_[li + 1]; ++g) {
@@ -279,7 +324,7 @@ void Ehm::order_greedy(int start) {
         best_delta = delta;
         best_touch = touch;
       }
-      if (step == 0 && start >= 0) break;
+      if (step < forced) break;
     }
     done_[best] = 1;
     order_.push_back(best);

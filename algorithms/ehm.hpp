@@ -35,22 +35,35 @@
 //     per-layer factors are common to all terms of a row, so they cancel in the marginals.
 //
 // Readings / choices:
-//  - `order` (an int, since options are numeric): 0 = greedy minimum frontier — repeatedly
-//    take the target whose addition leaves the fewest shared measurements that are touched by
-//    processed targets and still gated by unprocessed ones (ties: most already-touched gate
-//    measurements, then lowest index); this is a pathwidth heuristic on the gating graph and
-//    sweeps grids along their long axis. 1 = Cuthill–McKee breadth-first order from a
-//    pseudo-peripheral target of the target-adjacency graph (targets adjacent when they share a
-//    measurement). 2 = the input order (for comparison; poor on row-major grids).
+//  - `order` (an int, since options are numeric). 1 = greedy minimum frontier: repeatedly take
+//    the target whose addition leaves the fewest shared measurements gated both by a processed
+//    and by an unprocessed target (ties: most already-touched gate measurements, then lowest
+//    index) — a pathwidth heuristic on the gating graph that sweeps grids along their long axis.
+//    2 = Cuthill–McKee breadth-first order from a pseudo-peripheral target of the target
+//    adjacency graph (targets adjacent when they share a measurement). 3 = input order.
+//    0 (default) = auto: the cheapest, by Σ_k 2^(frontier after k targets), of the BFS order,
+//    greedy orders started by their own rule and from both ends of the BFS diameter, and the
+//    input order; choosing costs O(K²·gate) per cluster, negligible next to the net.
 //  - `threshold` zeroes normalised weights below it before anything else (as `exact:threshold`).
 //  - Work limit: the total number of net nodes in one solve is capped by `max_nodes`; past it
-//    the solve reports skipped:work_limit. A key space wider than 512 bits (no grid comes near)
-//    reports skipped:key_width. Memory is about 16 bytes + 8 per key word per node plus 4 bytes
-//    per (node, choice, child) edge, i.e. well under 1 GB at the default cap.
-//  - Net layers use an open-addressing hash table (node ids, generation-stamped slots) shared
-//    by all layers and solves; node keys, weights and edges live in flat member vectors, so a
-//    solve allocates nothing once they have grown. Results are bit-identical across repeats
-//    (node ids follow insertion order, which depends only on the problem).
+//    the solve reports skipped:work_limit (so do more than 16 stored edges per allowed node).
+//    A key space wider than 512 bits reports skipped:key_width. Memory is about 16 bytes plus
+//    8 per key word per node, plus 4 bytes per (node, choice, child) edge: roughly 60 bytes a
+//    node on the grids, so about 1.2 GB at the default cap of 2e7 nodes.
+//  - Layers whose key space has at most 22 bits are indexed by a direct-address table
+//    (key → node id, 16 MB, reset entry by entry after each layer); wider ones by an
+//    open-addressing hash table with generation-stamped slots. Node keys, weights and edges live
+//    in flat member vectors, so a solve allocates nothing once they have grown. Results are
+//    bit-identical across repeats (node ids follow insertion order, fixed by the problem).
+//  - Cost: a layer holds up to 2^|K(t)| nodes, and on the paper's grids nearly every subset of
+//    the frontier is reachable (Pd 0.6; at spacing 3 the gates have radius ≈ 5-7, so a
+//    measurement is gated by up to ~12 targets). Measured (bench/bench_ehm.cpp, 64 instances,
+//    default options): 3×n grids have |K| ≤ 17 and solve in ≤ 0.1 s (median 0.5 ms at 3×10,
+//    3.4 ms at 3×30); n×n grids grow as 2^(c·n): 5×5 |K| ≤ 22 (all solved, worst 1.6 s), 8×8
+//    |K| up to 30 (21 of 64 exceed the default cap), 10×10 |K| ≈ 20-37 (60 of 64 exceed it).
+//    A target sweep cannot do better on a 10-wide grid: the frontier is a band ~10 units wide,
+//    ~25 measurements. The EHM2 tree branches only where the remaining targets split into
+//    measurement-disjoint groups, which on dense grids is rare (it then equals plain EHM).
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -109,7 +122,7 @@ class Ehm final : public SingleScanSolver {
   const char* solve_cluster(int first, int last, MarginalTable& marginals);
   void solve_single(int target, MarginalTable& marginals);
   void choose_order();
-  void order_greedy(int start);  // start = -1: the greedy rule picks the first target too
+  void order_greedy(const std::vector<int>& prefix);  // `prefix` first, then the greedy rule
   void order_bfs();
   double order_cost(const std::vector<int>& order, int& widest);
   void build_tree();
@@ -143,7 +156,7 @@ class Ehm final : public SingleScanSolver {
 
   // Order and tree, indexed by position p (0 = root).
   std::vector<int> order_;            // p → li
-  std::vector<int> best_order_;
+  std::vector<int> best_order_, prefix_targets_;
   int bfs_start_ = 0;
   std::vector<int> position_;         // li → p
   std::vector<int> parent_;           // p → parent position or -1

@@ -377,6 +377,39 @@ TEST_CASE("ehm: large grids agree across tree and order variants", "[ehm]") {
   }
 }
 
+TEST_CASE("ehm: the EHM2 tree separates branches that plain EHM multiplies", "[ehm]") {
+  // A hub target H gates a1 and b1; targets A1..A3 gate a1..a3 densely, B1..B3 gate b1..b3.
+  // In the interleaved input order H, A1, B1, A2, B2, A3, B3, plain EHM's layers hold pairs
+  // (used A-set, used B-set); the EHM2 tree puts the A and B targets in two subtrees under H,
+  // whose layers hold one group's used-set each.
+  RowMatrix psi = RowMatrix::Zero(7, 6);  // columns a1 a2 a3 b1 b2 b3
+  RandomStream rng(8, 13, 0);
+  psi(0, 0) = 1.5;
+  psi(0, 3) = 0.7;
+  const int a_rows[3] = {1, 3, 5}, b_rows[3] = {2, 4, 6};
+  for (int k = 0; k < 3; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      psi(a_rows[k], c) = std::exp(rng.uniform(-1.0, 1.0));
+      psi(b_rows[k], 3 + c) = std::exp(rng.uniform(-1.0, 1.0));
+    }
+  }
+  const SingleScanProblem problem = make_problem(psi);
+  const RowMatrix reference = brute_force_marginals(problem).marginals;
+  auto tree = make_single_scan_solver("ehm:order=3");
+  auto path = make_single_scan_solver("ehm:order=3,tree=0");
+  const SolveResult t = run_solver(*tree, problem);
+  const SolveResult p = run_solver(*path, problem);
+  CHECK(scaled_error(t.marginals, reference, kRelative, kAbsolute) <= 1.0);
+  CHECK(scaled_error(p.marginals, reference, kRelative, kAbsolute) <= 1.0);
+  const EhmStats& ts = dynamic_cast<Ehm&>(*tree).stats();
+  const EhmStats& ps = dynamic_cast<Ehm&>(*path).stats();
+  // Tree: a layer of the A branch holds subsets of {a1, a2, a3} (at most 2^3 = 8, reached at A3:
+  // H, A1 and A2 can use any subset); path: products of an A-set and a B-set.
+  CHECK(ts.max_layer_width <= 8);
+  CHECK(ps.max_layer_width > ts.max_layer_width);
+  CHECK(ts.nodes < ps.nodes);
+}
+
 TEST_CASE("ehm: work limit refuses instead of hanging", "[ehm]") {
   const SingleScanProblem big = make_problem(RowMatrix::Constant(30, 30, 1.0));  // 2^29-wide layers
   auto solver = make_single_scan_solver("ehm:max_nodes=1000");
