@@ -325,6 +325,7 @@ void Ehm::order_greedy(const std::vector<int>& prefix) {
         best_touch = touch;
       }
       if (step < forced) break;
+
     }
     done_[best] = 1;
     order_.push_back(best);

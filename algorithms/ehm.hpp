@@ -49,7 +49,8 @@
 //    the solve reports skipped:work_limit (so do more than 16 stored edges per allowed node).
 //    A key space wider than 512 bits reports skipped:key_width. Memory is about 16 bytes plus
 //    8 per key word per node, plus 4 bytes per (node, choice, child) edge: roughly 60 bytes a
-//    node on the grids, so about 1.2 GB at the default cap of 2e7 nodes.
+//    node on the grids, so up to about 3 GB per solver at the default cap of 5e7 nodes (lower
+//    it when many threads solve large problems at once).
 //  - Layers whose key space has at most 22 bits are indexed by a direct-address table
 //    (key → node id, 16 MB, reset entry by entry after each layer); wider ones by an
 //    open-addressing hash table with generation-stamped slots. Node keys, weights and edges live
@@ -77,7 +78,7 @@ namespace dabench {
 
 struct EhmOptions {
   double threshold = 0.0;              // weights ψ_i(j) below this are set to zero first
-  std::int64_t max_nodes = 20000000;   // work limit: net nodes per solve (skipped:work_limit above)
+  std::int64_t max_nodes = 50000000;   // work limit: net nodes per solve (skipped:work_limit above; ~3 GB)
   int order = 0;                       // target order: 0 auto, 1 greedy min-frontier, 2 Cuthill–McKee BFS, 3 input
   bool tree = true;                    // true: EHM2 tree of tracks; false: EHM net over the order (a path)
 

@@ -410,6 +410,53 @@ TEST_CASE("ehm: the EHM2 tree separates branches that plain EHM multiplies", "[e
   CHECK(ts.nodes < ps.nodes);
 }
 
+TEST_CASE("ehm: a hub over 70 measurements matches its closed form", "[ehm]") {
+  // Hub H (target 0) gates measurements 0..69 with weights h_j; target k+1 gates measurement k
+  // only, weight w_k. Given H's choice the others are independent, so
+  //   Z = Π_k (1 + w_k) · (1 + Σ_j h_j / (1 + w_j)),
+  //   p(H = j) = (h_j / (1 + w_j)) / (1 + Σ_j' h_j' / (1 + w_j')),
+  //   p(T_k = k) = (1 − p(H = k)) · w_k / (1 + w_k).
+  // With the input order and tree=0, H comes first and the next layer's key space holds all 70
+  // measurements (two key words, the hash-table path); with tree=1, H has 70 subtrees of one
+  // target each (the many-children path of the α pass).
+  const int k_count = 70;
+  RandomStream rng(21, 14, 0);
+  SingleScanProblem problem = make_problem(RowMatrix::Zero(k_count + 1, k_count));
+  std::vector<double> h(k_count), w(k_count);
+  for (int k = 0; k < k_count; ++k) {
+    h[k] = std::exp(rng.uniform(-2.0, 2.0));
+    w[k] = std::exp(rng.uniform(-2.0, 2.0));
+    problem.psi(0, k) = h[k];
+    problem.psi(k + 1, k) = w[k];
+  }
+  double ratio_sum = 0.0, log_z = 0.0;
+  for (int k = 0; k < k_count; ++k) {
+    ratio_sum += h[k] / (1.0 + w[k]);
+    log_z += std::log1p(w[k]);
+  }
+  log_z += std::log1p(ratio_sum);
+  RowMatrix expected = RowMatrix::Zero(k_count + 1, k_count + 1);
+  expected(0, 0) = 1.0 / (1.0 + ratio_sum);
+  for (int k = 0; k < k_count; ++k) {
+    const double hub = h[k] / (1.0 + w[k]) / (1.0 + ratio_sum);
+    expected(0, k + 1) = hub;
+    expected(k + 1, k + 1) = (1.0 - hub) * w[k] / (1.0 + w[k]);
+    expected(k + 1, 0) = 1.0 - expected(k + 1, k + 1);
+  }
+  for (const char* spec : {"ehm:order=3,tree=0", "ehm:order=3", "ehm", "ehm:tree=0"}) {
+    auto solver = make_single_scan_solver(spec);
+    const SolveResult result = run_solver(*solver, problem);
+    REQUIRE(result.report.skipped.empty());
+    INFO(spec);
+    CHECK(scaled_error(result.marginals, expected, 1e-11, 1e-14) <= 1.0);
+    const EhmStats& stats = dynamic_cast<Ehm&>(*solver).stats();
+    CHECK(stats.log_partition == Approx(log_z).epsilon(1e-12));
+    CHECK(stats.max_layer_width <= k_count + 1);  // H has used at most one measurement
+    if (std::string(spec) == "ehm:order=3,tree=0") CHECK(stats.max_key_bits == k_count);
+    if (std::string(spec) == "ehm:order=3") CHECK(stats.max_key_bits == 1);
+  }
+}
+
 TEST_CASE("ehm: work limit refuses instead of hanging", "[ehm]") {
   const SingleScanProblem big = make_problem(RowMatrix::Constant(30, 30, 1.0));  // 2^29-wide layers
   auto solver = make_single_scan_solver("ehm:max_nodes=1000");
