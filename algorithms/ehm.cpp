@@ -325,7 +325,6 @@ void Ehm::order_greedy(const std::vector<int>& prefix) {
         best_touch = touch;
       }
       if (step < forced) break;
-
     }
     done_[best] = 1;
     order_.push_back(best);
