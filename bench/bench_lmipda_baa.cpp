@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "bench/problem_pool.hpp"
+#include "bench/grid_timing.hpp"
 
 namespace dabench::bench {
 

@@ -10,7 +10,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "bench/problem_pool.hpp"
+#include "bench/grid_timing.hpp"
 
 namespace dabench::bench {
 namespace {
