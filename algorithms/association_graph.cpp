@@ -33,6 +33,14 @@ void AssociationGraph::build(const SingleScanProblem& problem, double threshold)
   }
 }
 
+void AssociationGraph::index_columns() {
+  column_start_.assign(measurements_ + 1, 0);
+  for (int j = 0; j < measurements_; ++j) column_start_[j + 1] = column_start_[j] + measurement_degree_[j];
+  next_slot_.assign(column_start_.begin(), column_start_.end() - 1);
+  column_edge_.resize(edge_measurement_.size());
+  for (int e = 0; e < edges(); ++e) column_edge_[next_slot_[edge_measurement_[e]]++] = e;
+}
+
 void AssociationGraph::find_clusters() {
   parent_.resize(targets_ + measurements_);
   for (int v = 0; v < targets_ + measurements_; ++v) parent_[v] = v;

@@ -15,6 +15,8 @@ class AssociationGraph {
   void build(const SingleScanProblem& problem, double threshold = 0.0);
   // Computes the clusters of the last build() (union-find over targets and measurements).
   void find_clusters();
+  // Groups the edges of the last build() by measurement (targets stay in increasing order).
+  void index_columns();
 
   int targets() const { return targets_; }
   int measurements() const { return measurements_; }
@@ -26,6 +28,12 @@ class AssociationGraph {
   int edge_measurement(int e) const { return edge_measurement_[e]; }  // 0-based measurement
   double edge_weight(int e) const { return edge_weight_[e]; }
   int measurement_degree(int j) const { return measurement_degree_[j]; }
+
+  // Edges of measurement j (after index_columns()): column_edge(k) for k in
+  // [column_begin(j), column_end(j)), in increasing target order.
+  int column_begin(int j) const { return column_start_[j]; }
+  int column_end(int j) const { return column_start_[j + 1]; }
+  int column_edge(int k) const { return column_edge_[k]; }
 
   // Clusters (after find_clusters()): connected components over targets and measurements. Targets of cluster c are
   // cluster_targets()[cluster_start(c) .. cluster_start(c+1)), in increasing index order.
@@ -42,6 +50,8 @@ class AssociationGraph {
   std::vector<int> edge_measurement_;
   std::vector<double> edge_weight_;
   std::vector<int> measurement_degree_;
+  std::vector<int> column_start_;
+  std::vector<int> column_edge_;
   std::vector<int> parent_;  // union-find over targets (0..n-1) and measurements (n..n+m-1)
   std::vector<int> cluster_of_root_;
   std::vector<int> next_slot_;

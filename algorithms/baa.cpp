@@ -6,15 +6,6 @@
 
 namespace dabench {
 
-// Groups the edges of graph_ by measurement (counting sort; targets stay in increasing order).
-void BakhtiarAlaviAmoozegar::build_columns() {
-  const int m = graph_.measurements();
-  column_start_.assign(m + 1, 0);
-  for (int j = 0; j < m; ++j) column_start_[j + 1] = column_start_[j] + graph_.measurement_degree(j);
-  next_slot_.assign(column_start_.begin(), column_start_.end() - 1);
-  column_edge_.resize(graph_.edges());
-  for (int e = 0; e < graph_.edges(); ++e) column_edge_[next_slot_[graph_.edge_measurement(e)]++] = e;
-}
 
 void BakhtiarAlaviAmoozegar::solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) {
   report.reset();
@@ -50,20 +41,20 @@ void BakhtiarAlaviAmoozegar::solve(const SingleScanProblem& problem, MarginalTab
       }
     }
     // Π_{i≠t} f_ij per edge (t, j): leave-one-out products over the targets gated to j.
-    build_columns();
+    graph_.index_columns();
     for (int j = 0; j < m; ++j) {
-      const int begin = column_start_[j];
-      const int end = column_start_[j + 1];
+      const int begin = graph_.column_begin(j);
+      const int end = graph_.column_end(j);
       if (end - begin < 2) continue;
       double run = 1.0;
       for (int k = begin; k < end; ++k) {
-        const int e = column_edge_[k];
+        const int e = graph_.column_edge(k);
         product_[e] = run;
         run *= factor_[e];
       }
       run = 1.0;
       for (int k = end; k-- > begin;) {
-        const int e = column_edge_[k];
+        const int e = graph_.column_edge(k);
         product_[e] *= run;
         run *= factor_[e];
       }

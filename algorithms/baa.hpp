@@ -66,13 +66,8 @@ class BakhtiarAlaviAmoozegar final : public SingleScanSolver {
   void solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) override;
 
  private:
-  void build_columns();
-
   Options options_;
   AssociationGraph graph_;
-  std::vector<int> column_start_;  // size m+1: edges of measurement j are column_edge_[start..)
-  std::vector<int> column_edge_;   // edge indices grouped by measurement, targets ascending
-  std::vector<int> next_slot_;
   std::vector<double> factor_;     // per edge (i, j): f_ij = (S_i − ψ_i(j)) / S_i
   std::vector<double> product_;    // per edge (t, j): Π_{i≠t} f_ij, then the unnormalised β_tj
 };

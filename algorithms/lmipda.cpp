@@ -12,15 +12,6 @@ std::string LmipdaOptions::validate() const {
   return {};
 }
 
-// Groups the edges of graph_ by measurement (counting sort; targets stay in increasing order).
-void Lmipda::build_columns() {
-  const int m = graph_.measurements();
-  column_start_.assign(m + 1, 0);
-  for (int j = 0; j < m; ++j) column_start_[j + 1] = column_start_[j] + graph_.measurement_degree(j);
-  next_slot_.assign(column_start_.begin(), column_start_.end() - 1);
-  column_edge_.resize(graph_.edges());
-  for (int e = 0; e < graph_.edges(); ++e) column_edge_[next_slot_[graph_.edge_measurement(e)]++] = e;
-}
 
 void Lmipda::solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) {
   report.reset();
@@ -64,20 +55,20 @@ void Lmipda::solve(const SingleScanProblem& problem, MarginalTable& marginals, S
       }
     }
     // Leave-one-out sums per measurement: prefix sums forwards, then suffix sums backwards.
-    build_columns();
+    graph_.index_columns();
     for (int j = 0; j < m; ++j) {
-      const int begin = column_start_[j];
-      const int end = column_start_[j + 1];
+      const int begin = graph_.column_begin(j);
+      const int end = graph_.column_end(j);
       if (end - begin < 2) continue;
       double run = 0.0;
       for (int k = begin; k < end; ++k) {
-        const int e = column_edge_[k];
+        const int e = graph_.column_edge(k);
         others_[e] = run;
         run += clutter_share_[e];
       }
       run = 0.0;
       for (int k = end; k-- > begin;) {
-        const int e = column_edge_[k];
+        const int e = graph_.column_edge(k);
         others_[e] += run;
         run += clutter_share_[e];
       }

@@ -95,13 +95,8 @@ class Lmipda final : public SingleScanSolver {
   void solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) override;
 
  private:
-  void build_columns();
-
   Options options_;
   AssociationGraph graph_;
-  std::vector<int> column_start_;  // size m+1: edges of measurement j are column_edge_[start..)
-  std::vector<int> column_edge_;   // edge indices grouped by measurement, targets ascending
-  std::vector<int> next_slot_;
   std::vector<double> clutter_share_;  // per edge: ψ_ηi P^η_i / (1 − P^η_i)
   std::vector<double> others_;         // per edge (τ, i): Σ_{η≠τ} of clutter_share_ at i
 };
