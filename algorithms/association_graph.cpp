@@ -67,4 +67,17 @@ void AssociationGraph::find_clusters() {
   for (int i = 0; i < targets_; ++i) cluster_targets_[next_slot_[cluster_of_root_[find_root(i)]]++] = i;
 }
 
+void write_normalized_row(const AssociationGraph& graph, int i, const double* weight, double* row) {
+  const int begin = graph.row_begin(i);
+  const int end = graph.row_end(i);
+  double largest = 1.0;
+  for (int e = begin; e < end; ++e) largest = std::max(largest, weight[e]);
+  const double scale = 1.0 / largest;
+  double total = scale;
+  for (int e = begin; e < end; ++e) total += weight[e] * scale;
+  const double inverse = 1.0 / total;
+  row[0] = scale * inverse;
+  for (int e = begin; e < end; ++e) row[graph.edge_measurement(e) + 1] = weight[e] * scale * inverse;
+}
+
 }  // namespace dabench

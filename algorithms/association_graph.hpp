@@ -59,4 +59,9 @@ class AssociationGraph {
   std::vector<int> cluster_targets_;
 };
 
+// Writes target i's marginal row from unnormalised association weights (missed detection = 1,
+// gated pair e = weight[e]): scaled by 1/max(1, largest weight) first, so no finite weight
+// overflows the sum. `row` has m+1 entries and is already zero for ungated pairs.
+void write_normalized_row(const AssociationGraph& graph, int i, const double* weight, double* row);
+
 }  // namespace dabench

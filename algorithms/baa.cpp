@@ -65,18 +65,8 @@ void BakhtiarAlaviAmoozegar::solve(const SingleScanProblem& problem, MarginalTab
   for (int t = 0; t < n; ++t) {
     const int begin = graph_.row_begin(t);
     const int end = graph_.row_end(t);
-    double* row = marginals.row(t);
-    double largest = 1.0;
-    for (int e = begin; e < end; ++e) {
-      product_[e] *= graph_.edge_weight(e);
-      largest = std::max(largest, product_[e]);
-    }
-    const double scale = 1.0 / largest;
-    double total = scale;
-    for (int e = begin; e < end; ++e) total += product_[e] * scale;
-    const double inverse = 1.0 / total;
-    row[0] = scale * inverse;
-    for (int e = begin; e < end; ++e) row[graph_.edge_measurement(e) + 1] = product_[e] * scale * inverse;
+    for (int e = begin; e < end; ++e) product_[e] *= graph_.edge_weight(e);
+    write_normalized_row(graph_, t, product_.data(), marginals.row(t));
   }
 }
 

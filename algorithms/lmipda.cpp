@@ -80,19 +80,10 @@ void Lmipda::solve(const SingleScanProblem& problem, MarginalTable& marginals, S
   for (int i = 0; i < n; ++i) {
     const int begin = graph_.row_begin(i);
     const int end = graph_.row_end(i);
-    double* row = marginals.row(i);
-    double largest = 1.0;
     for (int e = begin; e < end; ++e) {
-      const double weight = gain * graph_.edge_weight(e) / (1.0 + others_[e]);
-      others_[e] = weight;  // reused as the unnormalised association weight
-      largest = std::max(largest, weight);
+      others_[e] = gain * graph_.edge_weight(e) / (1.0 + others_[e]);  // now the association weight
     }
-    const double scale = 1.0 / largest;
-    double total = scale;
-    for (int e = begin; e < end; ++e) total += others_[e] * scale;
-    const double inverse = 1.0 / total;
-    row[0] = scale * inverse;
-    for (int e = begin; e < end; ++e) row[graph_.edge_measurement(e) + 1] = others_[e] * scale * inverse;
+    write_normalized_row(graph_, i, others_.data(), marginals.row(i));
   }
 }
 
