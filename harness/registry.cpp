@@ -9,6 +9,11 @@ Registry<SingleScanSolver>& single_scan_registry() {
   return registry;
 }
 
+Registry<MultiScanSolver>& multi_scan_registry() {
+  static Registry<MultiScanSolver> registry;
+  return registry;
+}
+
 Registry<SingleScanScenario>& scenario_registry() {
   static Registry<SingleScanScenario> registry;
   return registry;
@@ -19,6 +24,16 @@ std::unique_ptr<SingleScanSolver> make_single_scan_solver(std::string_view spec_
   const auto* entry = single_scan_registry().find(spec.name);
   if (entry == nullptr) {
     throw InputError(fmt::format("unknown algorithm '{}' (known: {})", spec.name, single_scan_registry().names()));
+  }
+  return entry->create(spec.settings);
+}
+
+std::unique_ptr<MultiScanSolver> make_multi_scan_solver(std::string_view spec_text) {
+  const Spec spec = parse_spec(spec_text);
+  const auto* entry = multi_scan_registry().find(spec.name);
+  if (entry == nullptr) {
+    throw InputError(fmt::format("unknown multi-scan algorithm '{}' (known: {})", spec.name,
+                                 multi_scan_registry().names()));
   }
   return entry->create(spec.settings);
 }

@@ -6,7 +6,8 @@
 //
 // where the class provides `using Options = ...;` (a struct with bind() and validate()),
 // `static constexpr std::string_view kName`, `kSummary`, and a constructor from Options.
-// Scenarios do the same with DABENCH_REGISTER_SCENARIO. Registries are function-local statics, filled before main() by objects in OBJECT libraries
+// Multiple-scan algorithms use DABENCH_REGISTER_MULTI_SCAN, scenarios DABENCH_REGISTER_SCENARIO.
+// Registries are function-local statics, filled before main() by objects in OBJECT libraries
 // (which the linker never drops).
 #include <functional>
 #include <map>
@@ -17,6 +18,7 @@
 
 #include "harness/params.hpp"
 #include "harness/scenario.hpp"
+#include "harness/multi_scan_solver.hpp"
 #include "harness/single_scan_solver.hpp"
 
 namespace dabench {
@@ -55,11 +57,13 @@ class Registry {
 };
 
 Registry<SingleScanSolver>& single_scan_registry();
+Registry<MultiScanSolver>& multi_scan_registry();
 Registry<SingleScanScenario>& scenario_registry();
 
 // Parses a SPEC ("bp", "bp:delta=1e-6") and builds the solver; throws InputError for an
 // unknown name, an unknown key or an invalid value.
 std::unique_ptr<SingleScanSolver> make_single_scan_solver(std::string_view spec);
+std::unique_ptr<MultiScanSolver> make_multi_scan_solver(std::string_view spec);
 
 template <class Made, class Product>
 typename Registry<Product>::Entry make_registry_entry() {
@@ -85,6 +89,11 @@ struct SingleScanRegistration {
   }
 };
 
+template <class Solver>
+struct MultiScanRegistration {
+  MultiScanRegistration() { multi_scan_registry().add(make_registry_entry<Solver, MultiScanSolver>()); }
+};
+
 template <class Scenario>
 struct ScenarioRegistration {
   ScenarioRegistration() { scenario_registry().add(make_registry_entry<Scenario, SingleScanScenario>()); }
@@ -94,5 +103,7 @@ struct ScenarioRegistration {
 
 #define DABENCH_REGISTER_SINGLE_SCAN(Solver) \
   static const ::dabench::SingleScanRegistration<Solver> dabench_single_scan_registration_##Solver {}
+#define DABENCH_REGISTER_MULTI_SCAN(Solver) \
+  static const ::dabench::MultiScanRegistration<Solver> dabench_multi_scan_registration_##Solver {}
 #define DABENCH_REGISTER_SCENARIO(Scenario) \
   static const ::dabench::ScenarioRegistration<Scenario> dabench_scenario_registration_##Scenario {}
