@@ -47,6 +47,10 @@
 //  - `threshold` zeroes normalised weights below it before anything else (as `exact:threshold`).
 //  - Work limit: the total number of net nodes in one solve is capped by `max_nodes`; past it
 //    the solve reports skipped:work_limit (so do more than 16 stored edges per allowed node).
+//    Before building, the chosen order's estimated net size (order_cost: an upper bound on the
+//    plain-EHM net, 0.6-1× the nodes actually built on the grids that finish) is compared with
+//    the cap: above 4 × max_nodes the cluster is refused at once as skipped:work_estimate,
+//    instead of spending seconds filling the budget.
 //    A key space wider than 512 bits reports skipped:key_width. Memory is about 16 bytes plus
 //    8 per key word per node, plus 4 bytes per (node, choice, child) edge: roughly 60 bytes a
 //    node on the grids, so up to about 3 GB per solver at the default cap of 5e7 nodes (lower
@@ -99,6 +103,7 @@ struct EhmStats {
   int max_key_bits = 0;       // largest key space |K(t)|
   int largest_cluster = 0;    // targets in the largest cluster
   int clusters = 0;
+  double estimated_nodes = 0.0; // estimated net size of the chosen orders (order_cost)
   double log_partition = 0.0; // log Z of the normalised problem (ψ_i(0) = 1 form)
 };
 
@@ -136,8 +141,11 @@ class Ehm final : public SingleScanSolver {
   void grow_table(std::int32_t layer_first);
   void write_rows(MarginalTable& marginals);
 
+  static constexpr double kEstimateMargin = 4.0;  // refuse when the estimate exceeds this × max_nodes
+
   Options options_;
   EhmStats stats_;
+  double cluster_estimate_ = 0.0;   // order_cost of the current cluster's chosen order
   AssociationGraph graph_;
 
   // Cluster, indexed by local target li (cluster order) and local shared measurement id.

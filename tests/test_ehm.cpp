@@ -461,7 +461,9 @@ TEST_CASE("ehm: work limit refuses instead of hanging", "[ehm]") {
   const SingleScanProblem big = make_problem(RowMatrix::Constant(30, 30, 1.0));  // 2^29-wide layers
   auto solver = make_single_scan_solver("ehm:max_nodes=1000");
   const SolveResult result = run_solver(*solver, big);
-  CHECK(result.report.skipped == "work_limit");
+  // Its estimated net (about 2^29 nodes per layer) is far past 4 × the cap: refused before building.
+  CHECK(result.report.skipped == "work_estimate");
+  CHECK(dynamic_cast<Ehm*>(solver.get())->stats().nodes == 0);
   // The same solver then solves a small problem normally (no stale state).
   const SolveResult after = run_solver(*solver, make_problem(RowMatrix::Constant(3, 3, 1.0)));
   REQUIRE(after.report.skipped.empty());
@@ -473,6 +475,9 @@ TEST_CASE("ehm: work limit refuses instead of hanging", "[ehm]") {
   const std::int64_t nodes = ehm->stats().nodes;
   CHECK(nodes == 12);
   CHECK(ehm->stats().max_layer_width == 7);
+  // The size estimate behind the up-front refusal bounds the net from above, and tightly.
+  CHECK(ehm->stats().estimated_nodes >= static_cast<double>(nodes));
+  CHECK(ehm->stats().estimated_nodes <= 4.0 * static_cast<double>(nodes));
   CHECK(run_solver(*make_single_scan_solver("ehm:max_nodes=" + std::to_string(nodes)),
                    make_problem(RowMatrix::Constant(3, 3, 1.0))).report.skipped.empty());
   CHECK(run_solver(*make_single_scan_solver("ehm:max_nodes=" + std::to_string(nodes - 1)),
