@@ -997,6 +997,9 @@ def render(rep, args):
             refs = ", ".join(sorted(data.references_by_exp.get(e, ()))) or "not recorded"
             extra = f"; trials.csv streamed ({rep.trials[e].rows} rows)" if e in rep.trials else ""
             out.append(f"- {label}: `{path}` (reference: {refs}{extra})")
+            if e == 1:
+                for more in args.exp1_extra:
+                    out.append(f"  - plus the algorithms it lacks from `{more}`")
         else:
             out.append(f"- {label}: not given")
     out.append(f"- panels found: {', '.join(SHORT[p.key] for p in data.panels) or 'none'}")
@@ -1030,6 +1033,9 @@ def main(argv=None):
         prog=fp.fig6.PROG,
         description="Section V-B claims of Williams & Lau 2014 next to measured numbers (Markdown).")
     ap.add_argument("--exp1", metavar="CSV", help="summary.csv of experiment 1 (2×3 grid, seven panels)")
+    ap.add_argument("--exp1-extra", metavar="CSV", action="append", default=[],
+                    help="summary.csv of another experiment-1 run over the same points; adds the "
+                         "algorithms --exp1 lacks (repeatable)")
     ap.add_argument("--exp2", metavar="CSV", help="summary.csv of experiment 2 (n×3 grids)")
     ap.add_argument("--exp3", metavar="CSV", help="summary.csv of experiment 3 (n×n grids)")
     ap.add_argument("--out", metavar="FILE", help="write the Markdown here instead of stdout")
@@ -1037,7 +1043,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if not (args.exp1 or args.exp2 or args.exp3):
         fail("no input: give at least one of --exp1, --exp2, --exp3")
-    data = fp.PaperData(args.exp1, args.exp2, args.exp3)
+    data = fp.PaperData(args.exp1, args.exp2, args.exp3, args.exp1_extra)
     bp_specs = {a for a in data.algorithms() if fp.family_key(a) == "bp"}
     trials = {}
     if not args.no_trials:

@@ -218,7 +218,7 @@ def grid_title(rows):
 class PaperData:
     """The three runs split into the nine panels of Fig. 6."""
 
-    def __init__(self, exp1=None, exp2=None, exp3=None):
+    def __init__(self, exp1=None, exp2=None, exp3=None, exp1_extra=()):
         self.paths = {1: exp1, 2: exp2, 3: exp3}
         self.summaries = {}
         self.references = set()
@@ -228,6 +228,10 @@ class PaperData:
                 self.summaries[exp] = fig6.Summary(path)
                 self.references_by_exp[exp] = set(read_references(path))
                 self.references.update(self.references_by_exp[exp])
+        for path in exp1_extra:
+            if 1 not in self.summaries:
+                fail("--exp1-extra needs --exp1")
+            self._add_algorithms(self.summaries[1], fig6.Summary(path))
         self.panels = []
         if 1 in self.summaries:
             self._split_exp1(self.summaries[1])
@@ -237,6 +241,19 @@ class PaperData:
         order = [d[0] for d in PANEL_DEFS]
         self.panels.sort(key=lambda p: order.index(p.key))
         self.by_key = {p.key: p for p in self.panels}
+
+    @staticmethod
+    def _add_algorithms(main, extra):
+        """Rows of algorithms that `main` lacks, from a run over the same points (e.g. a shorter
+        run of the costly MCMCDA 10^7 chain); algorithms `main` has keep its rows."""
+        if extra.params != main.params:
+            fail(f"{extra.path}: scenario columns {extra.params} differ from {main.path}'s {main.params}")
+        have = {r.get("algorithm") for r in main.rows}
+        added = [r for r in extra.rows if r.get("algorithm") not in have]
+        if not added:
+            note(f"{extra.path}: no algorithm that {main.path} lacks")
+        main.rows.extend(added)
+        main.columns.update(extra.columns)
 
     def _split_exp1(self, s):
         for col in ("pd", "lambda_fa", "r", "spacing"):
@@ -397,6 +414,9 @@ def main(argv=None):
         prog=fig6.PROG,
         description="The complete Fig. 6 of Williams & Lau 2014 from the runs of its three experiments.")
     ap.add_argument("--exp1", metavar="CSV", help="summary.csv of experiment 1 (2×3 grid, seven panels)")
+    ap.add_argument("--exp1-extra", metavar="CSV", action="append", default=[],
+                    help="summary.csv of another experiment-1 run over the same points; adds the "
+                         "algorithms --exp1 lacks (repeatable)")
     ap.add_argument("--exp2", metavar="CSV", help="summary.csv of experiment 2 (n×3 grids)")
     ap.add_argument("--exp3", metavar="CSV", help="summary.csv of experiment 3 (n×n grids)")
     ap.add_argument("--out", help="output PNG (an SVG is written next to it; default: fig6_paper.png "
@@ -417,7 +437,7 @@ def main(argv=None):
 
     if not (args.exp1 or args.exp2 or args.exp3):
         fail("no input: give at least one of --exp1, --exp2, --exp3")
-    data = PaperData(args.exp1, args.exp2, args.exp3)
+    data = PaperData(args.exp1, args.exp2, args.exp3, args.exp1_extra)
     if not data.panels:
         fail("no Fig. 6 panel found in the inputs")
     mcol, mse = f"{args.metric}_mean", f"{args.metric}_se"
