@@ -37,10 +37,14 @@
 // the true position, last in the track, with prior ε·L(φ*)² (ε = probe_weight), and
 // density_scale N·g(x) for particles, N·g(x*)/ε for the probe (harness/particle_metrics.hpp).
 //
-// Default particle count: 10000 (see "particles" below). Measured with
-// experiments/multiscan-particles.ini (one target, where jpda-bp is exact Bayes, so HPD values
-// must be Uniform(0, 1) up to particle error): KS statistics of 1000 HPD values per count —
-// see that file's header for the numbers and the reasoning.
+// Default particle count: 10000. The posterior after the scans covers ~1 % of the initial
+// bearing line, so only that share of the particles carries its weight. Measured with
+// experiments/multiscan-particles.ini (one target per trial, where jpda-bp is exact Bayes, so
+// HPD values must be Uniform(0, 1) up to particle error; 1000 trials, seed 7, KS 5 % critical
+// value 0.043), KS distance D for particles = 300 / 1000 / 3000 / 10000:
+//    4 scans: 0.116 / 0.051 / 0.030 / 0.034      12 scans: 0.204 / 0.080 / 0.048 / 0.025
+// 10000 is the smallest of these counts that passes in both settings. jpda-bp then takes
+// ~0.25 ms (4 scans) / ~1 ms (12 scans) per target and trial on one core.
 //
 // Draw order (stable; a change alters every trial's numbers):
 //  1. the number of targets: poisson(mean_targets) (nothing if poisson_targets = 0);
