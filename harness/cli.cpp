@@ -66,16 +66,21 @@ fs::path experiments_folder() {
 }
 
 int command_list() {
-  std::string out = "Algorithms (SPEC = name or name:key=value,...):\n";
-  for (const auto& [name, entry] : single_scan_registry().entries()) {
-    out += fmt::format("  {:<10} {}\n", name, entry.summary);
-    for (const auto& param : entry.defaults) out += fmt::format("      {:<16} = {:<10} {}\n", param.key, ParamList::format(param), param.doc);
-  }
+  std::string out;
+  const auto describe = [&out](const auto& registry) {
+    for (const auto& [name, entry] : registry.entries()) {
+      out += fmt::format("  {:<10} {}\n", name, entry.summary);
+      for (const auto& param : entry.defaults) out += fmt::format("      {:<16} = {:<10} {}\n", param.key, ParamList::format(param), param.doc);
+    }
+  };
+  out += "Algorithms (SPEC = name or name:key=value,...):\n";
+  describe(single_scan_registry());
+  out += "\nMulti-scan algorithms (for multi-scan scenarios):\n";
+  describe(multi_scan_registry());
   out += "\nScenarios (parameters settable in an experiment's [scenario] and [sweep] sections):\n";
-  for (const auto& [name, entry] : scenario_registry().entries()) {
-    out += fmt::format("  {:<10} {}\n", name, entry.summary);
-    for (const auto& param : entry.defaults) out += fmt::format("      {:<16} = {:<10} {}\n", param.key, ParamList::format(param), param.doc);
-  }
+  describe(scenario_registry());
+  out += "\nMulti-scan scenarios (run multi-scan algorithms; metrics against the truth):\n";
+  describe(multi_scan_scenario_registry());
   const fs::path folder = experiments_folder();
   out += fmt::format("\nExperiments (in {}):\n", folder.string());
   std::set<fs::path> files;
@@ -190,8 +195,8 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
                  outcome.items_written, outcome.items_total, resume_line.c_str());
     return 130;
   }
-  std::fprintf(stderr, "dabench: %lld trials done; results in %s/ (trials.csv, summary.csv, meta.json)\n",
-               outcome.items_total, outcome.output.c_str());
+  std::fprintf(stderr, "dabench: %lld trials done; results in %s/ (trials.csv%s, summary.csv, meta.json)\n",
+               outcome.items_total, outcome.output.c_str(), outcome.multi_scan ? ", targets.csv" : "");
   return 0;
 }
 

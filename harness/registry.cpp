@@ -19,6 +19,11 @@ Registry<SingleScanScenario>& scenario_registry() {
   return registry;
 }
 
+Registry<MultiScanScenario>& multi_scan_scenario_registry() {
+  static Registry<MultiScanScenario> registry;
+  return registry;
+}
+
 std::unique_ptr<SingleScanSolver> make_single_scan_solver(std::string_view spec_text) {
   const Spec spec = parse_spec(spec_text);
   const auto* entry = single_scan_registry().find(spec.name);

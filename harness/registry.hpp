@@ -6,7 +6,8 @@
 //
 // where the class provides `using Options = ...;` (a struct with bind() and validate()),
 // `static constexpr std::string_view kName`, `kSummary`, and a constructor from Options.
-// Multiple-scan algorithms use DABENCH_REGISTER_MULTI_SCAN, scenarios DABENCH_REGISTER_SCENARIO.
+// Multiple-scan algorithms use DABENCH_REGISTER_MULTI_SCAN, scenarios DABENCH_REGISTER_SCENARIO
+// (single scan) or DABENCH_REGISTER_MULTI_SCAN_SCENARIO.
 // Registries are function-local statics, filled before main() by objects in OBJECT libraries
 // (which the linker never drops).
 #include <functional>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "harness/params.hpp"
+#include "harness/multi_scan_scenario.hpp"
 #include "harness/scenario.hpp"
 #include "harness/multi_scan_solver.hpp"
 #include "harness/single_scan_solver.hpp"
@@ -59,6 +61,7 @@ class Registry {
 Registry<SingleScanSolver>& single_scan_registry();
 Registry<MultiScanSolver>& multi_scan_registry();
 Registry<SingleScanScenario>& scenario_registry();
+Registry<MultiScanScenario>& multi_scan_scenario_registry();
 
 // Parses a SPEC ("bp", "bp:delta=1e-6") and builds the solver; throws InputError for an
 // unknown name, an unknown key or an invalid value.
@@ -99,6 +102,13 @@ struct ScenarioRegistration {
   ScenarioRegistration() { scenario_registry().add(make_registry_entry<Scenario, SingleScanScenario>()); }
 };
 
+template <class Scenario>
+struct MultiScanScenarioRegistration {
+  MultiScanScenarioRegistration() {
+    multi_scan_scenario_registry().add(make_registry_entry<Scenario, MultiScanScenario>());
+  }
+};
+
 }  // namespace dabench
 
 #define DABENCH_REGISTER_SINGLE_SCAN(Solver) \
@@ -107,3 +117,5 @@ struct ScenarioRegistration {
   static const ::dabench::MultiScanRegistration<Solver> dabench_multi_scan_registration_##Solver {}
 #define DABENCH_REGISTER_SCENARIO(Scenario) \
   static const ::dabench::ScenarioRegistration<Scenario> dabench_scenario_registration_##Scenario {}
+#define DABENCH_REGISTER_MULTI_SCAN_SCENARIO(Scenario) \
+  static const ::dabench::MultiScanScenarioRegistration<Scenario> dabench_multi_scan_scenario_registration_##Scenario {}

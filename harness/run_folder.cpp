@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "harness/atomic_file.hpp"
+#include "harness/csv.hpp"
 #include "harness/errors.hpp"
 
 namespace dabench {
@@ -14,6 +15,7 @@ namespace dabench {
 namespace fs = std::filesystem;
 
 std::string trials_path(const RunPlan& plan) { return (fs::path(plan.output) / "trials.csv").string(); }
+std::string targets_path(const RunPlan& plan) { return (fs::path(plan.output) / "targets.csv").string(); }
 std::string summary_path(const RunPlan& plan) { return (fs::path(plan.output) / "summary.csv").string(); }
 std::string meta_path(const RunPlan& plan) { return (fs::path(plan.output) / "meta.json").string(); }
 
@@ -93,6 +95,47 @@ OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force, cons
     throw InputError(fmt::format("{}: write failed", trials));
   }
   return opened;
+}
+
+}  // namespace dabench
+
+namespace dabench {
+
+std::FILE* open_targets_file(const RunPlan& plan, long long items_done, bool resumed) {
+  const std::string path = targets_path(plan);
+  const std::string header = plan.targets_header();
+  if (resumed && items_done > 0) {
+    const std::string text = read_all(path);
+    if (text.compare(0, header.size(), header) != 0) {
+      throw InputError(fmt::format("{}: missing or its header differs from this experiment's; use --force to start over", path));
+    }
+    // Rows are in item order; keep the complete lines of items below items_done.
+    const std::size_t trial_column = plan.point_params.front().size() + 1;
+    std::vector<std::string> fields;
+    std::size_t keep = header.size();
+    for (std::size_t at = header.size(); at < text.size();) {
+      const auto end = text.find('\n', at);
+      if (end == std::string::npos) break;
+      std::int64_t point = 0, trial = 0;
+      if (!split_csv_line(std::string_view(text).substr(at, end - at), fields) || fields.size() <= trial_column ||
+          !parse_int64(fields[0], point) || !parse_int64(fields[trial_column], trial)) {
+        throw InputError(fmt::format("{}: malformed row at byte {}; use --force to start over", path, at));
+      }
+      if (point * plan.trials + trial >= items_done) break;
+      keep = end + 1;
+      at = end + 1;
+    }
+    std::error_code error;
+    fs::resize_file(path, keep, error);
+    if (error) throw InputError(fmt::format("{}: cannot trim rows ({})", path, error.message()));
+    return open_or_throw(path, "ab");
+  }
+  std::FILE* file = open_or_throw(path, "wb");
+  if (std::fputs(header.c_str(), file) < 0 || std::fflush(file) != 0) {
+    std::fclose(file);
+    throw InputError(fmt::format("{}: write failed", path));
+  }
+  return file;
 }
 
 }  // namespace dabench

@@ -9,15 +9,48 @@
 
 namespace dabench {
 
-std::string RunPlan::trials_header() const {
+namespace {
+
+std::string point_columns(const std::vector<KeyValue>& params) {
   std::string header = "point";
-  for (const KeyValue& kv : point_params.front()) {
+  for (const KeyValue& kv : params) {
     header += ',';
     append_csv_field(header, kv.key);
   }
-  header += ",trial,seed,algorithm,status";
-  for (const std::string& metric : single_scan_metric_columns()) header += "," + metric;
+  return header;
+}
+
+// A multi-scan algorithm's name given where a single-scan one is expected, or the reverse.
+std::string kind_hint(const std::string& spec, bool multi_scan, const std::string& scenario) {
+  std::string name;
+  try {
+    name = parse_spec(spec).name;
+  } catch (const InputError&) {
+    return {};
+  }
+  if (multi_scan && single_scan_registry().find(name) != nullptr) {
+    return fmt::format(" ('{}' is a single-scan algorithm; scenario '{}' is multi-scan)", name, scenario);
+  }
+  if (!multi_scan && multi_scan_registry().find(name) != nullptr) {
+    return fmt::format(" ('{}' is a multi-scan algorithm; scenario '{}' is single-scan)", name, scenario);
+  }
+  return {};
+}
+
+}  // namespace
+
+const std::vector<std::string>& RunPlan::metric_columns() const {
+  return multi_scan ? multi_scan_metric_columns() : single_scan_metric_columns();
+}
+
+std::string RunPlan::trials_header() const {
+  std::string header = point_columns(point_params.front()) + ",trial,seed,algorithm,status";
+  for (const std::string& metric : metric_columns()) header += "," + metric;
   return header + "\n";
+}
+
+std::string RunPlan::targets_header() const {
+  return point_columns(point_params.front()) + ",trial,seed,algorithm,target,hpd,entropy\n";
 }
 
 std::string RunPlan::fingerprint() const {
@@ -54,14 +87,22 @@ RunPlan make_run_plan(const RunOptions& options) {
   if (plan.threads < 1 || plan.threads > 1024) throw InputError(fmt::format("--threads must be in 1..1024 (got {})", plan.threads));
   plan.output = options.output.value_or(experiment.output);
 
-  const auto* scenario = scenario_registry().find(experiment.scenario);
-  if (scenario == nullptr) {
-    throw InputError(fmt::format("{}: unknown scenario '{}' (known: {})", path, experiment.scenario,
-                                 scenario_registry().names()));
+  const auto* single_scan = scenario_registry().find(experiment.scenario);
+  const auto* multi_scan = multi_scan_scenario_registry().find(experiment.scenario);
+  if (single_scan == nullptr && multi_scan == nullptr) {
+    std::string known = scenario_registry().names();
+    if (!multi_scan_scenario_registry().entries().empty()) known += ", " + multi_scan_scenario_registry().names();
+    throw InputError(fmt::format("{}: unknown scenario '{}' (known: {})", path, experiment.scenario, known));
+  }
+  plan.multi_scan = multi_scan != nullptr;
+  if (plan.multi_scan && !experiment.references.empty()) {
+    throw InputError(fmt::format("{}: scenario '{}' is multi-scan: its metrics are against the truth, so "
+                                 "'reference' lines are not used (remove them)", path, experiment.scenario));
   }
   for (std::size_t p = 0; p < experiment.points.size(); ++p) {
     try {
-      plan.point_params.push_back(scenario->resolve(experiment.points[p]));
+      plan.point_params.push_back(plan.multi_scan ? multi_scan->resolve(experiment.points[p])
+                                                  : single_scan->resolve(experiment.points[p]));
     } catch (const InputError& error) {
       throw InputError(fmt::format("{}: sweep point {}: {}", path, p, error.what()));
     }
@@ -84,9 +125,10 @@ RunPlan make_run_plan(const RunOptions& options) {
   }
   for (const std::string& spec : plan.specs) {
     try {
-      make_single_scan_solver(spec);
+      if (plan.multi_scan) make_multi_scan_solver(spec);
+      else make_single_scan_solver(spec);
     } catch (const InputError& error) {
-      throw InputError(fmt::format("{}: {}", path, error.what()));
+      throw InputError(fmt::format("{}: {}{}", path, error.what(), kind_hint(spec, plan.multi_scan, experiment.scenario)));
     }
   }
   return plan;

@@ -18,6 +18,7 @@
 #include "harness/errors.hpp"
 #include "harness/json.hpp"
 #include "harness/marginal_errors.hpp"
+#include "harness/multi_scan_execution.hpp"
 #include "harness/ordered_writer.hpp"
 #include "harness/progress.hpp"
 #include "harness/registry.hpp"
@@ -30,6 +31,12 @@ namespace dabench {
 const std::vector<std::string>& single_scan_metric_columns() {
   static const std::vector<std::string> columns = {"n_targets", "n_measurements", "max_error", "mean_error",
                                                    "time_us",   "iterations",     "converged", "w_star"};
+  return columns;
+}
+
+const std::vector<std::string>& multi_scan_metric_columns() {
+  static const std::vector<std::string> columns = {"n_targets", "n_scans", "n_measurements", "mean_hpd",  "max_hpd",
+                                                   "mean_entropy", "time_us", "iterations",  "converged"};
   return columns;
 }
 
@@ -70,7 +77,7 @@ struct Worker {
   std::vector<SolveReport> reports;
   std::vector<double> time_us;
   ScenarioSample sample;
-  std::string rows;
+  std::vector<std::string> texts;  // rows for {trials.csv}
   double busy_seconds = 0.0;
 };
 
@@ -126,7 +133,7 @@ class Execution {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (std::size_t a = 0; a < count; ++a) {
       const SolveReport& report = worker.reports[a];
-      std::string& row = worker.rows;
+      std::string& row = worker.texts[0];
       fmt::format_to(std::back_inserter(row), "{},{},{},{},", point_prefix_[point], trial, plan_.seed, spec_field_[a]);
       const bool ok = report.skipped.empty();
       if (ok) {
@@ -157,6 +164,7 @@ class Execution {
     worker.marginals.resize(plan_.specs.size());
     worker.reports.resize(plan_.specs.size());
     worker.time_us.resize(plan_.specs.size());
+    worker.texts.resize(1);
     return worker;
   }
 
@@ -166,6 +174,35 @@ class Execution {
   std::vector<std::string> point_prefix_;
   std::vector<std::string> spec_field_;
 };
+
+// Runs blocks first_block..total_blocks−1 on OpenMP threads (each thread with its own worker)
+// and hands each block's texts to the ordered writer; returns the threads' busy seconds.
+template <class Execution>
+double run_blocks(const Execution& execution, OrderedWriter& writer, ProgressLine& progress, int threads,
+                  long long first_block, long long skip_in_first, long long total_items,
+                  std::atomic<long long>& items_finished) {
+  const long long total_blocks = (total_items + kItemsPerBlock - 1) / kItemsPerBlock;
+  double busy_seconds = 0.0;
+#pragma omp parallel num_threads(threads) reduction(+ : busy_seconds)
+  {
+    auto worker = execution.make_worker();
+    const std::size_t files = worker.texts.size();
+#pragma omp for schedule(dynamic, 1)
+    for (long long block = first_block; block < total_blocks; ++block) {
+      if (g_interrupted) continue;
+      const long long begin = block * kItemsPerBlock + (block == first_block ? skip_in_first : 0);
+      const long long end = std::min(total_items, (block + 1) * kItemsPerBlock);
+      for (std::string& text : worker.texts) text.clear();
+      for (long long item = begin; item < end; ++item) execution.run_item(worker, item);
+      const long long blocks_written = writer.submit(block, std::move(worker.texts));
+      worker.texts = std::vector<std::string>(files);
+      items_finished += end - begin;
+      if (omp_get_thread_num() == 0 || blocks_written == total_blocks) progress.update(items_finished.load());
+    }
+    busy_seconds += worker.busy_seconds;
+  }
+  return busy_seconds;
+}
 
 std::string meta_json(const RunPlan& plan, const RunOptions& options, const std::string& started,
                       const std::string& status, long long items_done, double wall_seconds, double work_fraction,
@@ -213,63 +250,58 @@ std::string meta_json(const RunPlan& plan, const RunOptions& options, const std:
 
 RunOutcome run_experiment(const RunOptions& options) {
   const RunPlan plan = make_run_plan(options);
-  std::vector<std::unique_ptr<SingleScanScenario>> scenarios;
-  const auto* scenario_entry = scenario_registry().find(plan.experiment.scenario);
-  for (const auto& settings : plan.point_settings) scenarios.push_back(scenario_entry->create(settings));
-
   const std::string started = utc_now();
   OpenedTrials opened = open_trials_file(plan, options.resume, options.force,
                                          meta_json(plan, options, started, "running", 0, 0.0, std::nan(""), false));
+  std::vector<std::FILE*> files;
+  if (plan.multi_scan) files.push_back(open_targets_file(plan, opened.items_done, opened.resumed));
+  files.push_back(opened.file);  // trials.csv last: targets.csv never holds fewer items
   write_file_atomically(meta_path(plan), meta_json(plan, options, started, "running", opened.items_done, 0.0,
                                                    std::nan(""), opened.resumed));
 
   const long long total_items = plan.items();
   const long long first_block = opened.items_done / kItemsPerBlock;
-  const long long total_blocks = (total_items + kItemsPerBlock - 1) / kItemsPerBlock;
   // Resume points are whole items; realign so block boundaries stay item multiples.
   const long long skip_in_first = opened.items_done - first_block * kItemsPerBlock;
-  OrderedWriter writer(opened.file, first_block);
+  OrderedWriter writer(files, first_block);
   ProgressLine progress(total_items, opened.items_done, stderr_is_terminal());
-  const Execution execution(plan, std::move(scenarios));
 
   g_interrupted = 0;
   auto previous_int = std::signal(SIGINT, on_interrupt);
   auto previous_term = std::signal(SIGTERM, on_interrupt);
   const auto wall_start = Clock::now();
-  double busy_seconds = 0.0;
   std::atomic<long long> items_finished{opened.items_done};
-
-#pragma omp parallel num_threads(plan.threads) reduction(+ : busy_seconds)
-  {
-    Worker worker = execution.make_worker();
-#pragma omp for schedule(dynamic, 1)
-    for (long long block = first_block; block < total_blocks; ++block) {
-      if (g_interrupted) continue;
-      const long long begin = block * kItemsPerBlock + (block == first_block ? skip_in_first : 0);
-      const long long end = std::min(total_items, (block + 1) * kItemsPerBlock);
-      worker.rows.clear();
-      for (long long item = begin; item < end; ++item) execution.run_item(worker, item);
-      const long long blocks_written = writer.submit(block, std::move(worker.rows));
-      worker.rows = std::string();
-      items_finished += end - begin;
-      if (omp_get_thread_num() == 0 || blocks_written == total_blocks) progress.update(items_finished.load());
-    }
-    busy_seconds += worker.busy_seconds;
+  double busy_seconds = 0.0;
+  if (plan.multi_scan) {
+    std::vector<std::unique_ptr<MultiScanScenario>> scenarios;
+    const auto* entry = multi_scan_scenario_registry().find(plan.experiment.scenario);
+    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
+    const MultiScanExecution execution(plan, std::move(scenarios));
+    busy_seconds = run_blocks(execution, writer, progress, plan.threads, first_block, skip_in_first, total_items,
+                              items_finished);
+  } else {
+    std::vector<std::unique_ptr<SingleScanScenario>> scenarios;
+    const auto* entry = scenario_registry().find(plan.experiment.scenario);
+    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
+    const Execution execution(plan, std::move(scenarios));
+    busy_seconds = run_blocks(execution, writer, progress, plan.threads, first_block, skip_in_first, total_items,
+                              items_finished);
   }
   std::signal(SIGINT, previous_int);
   std::signal(SIGTERM, previous_term);
   progress.finish();
   const double wall_seconds = std::chrono::duration<double>(Clock::now() - wall_start).count();
-  std::fclose(opened.file);
-  if (writer.failed()) throw InputError(fmt::format("{}: write failed (disk full?)", trials_path(plan)));
+  for (std::FILE* file : files) std::fclose(file);
+  if (writer.failed()) throw InputError(fmt::format("{}: write failed (disk full?)", plan.output));
 
   RunOutcome outcome;
   outcome.items_total = total_items;
   outcome.items_written = std::min(total_items, writer.next_block() * kItemsPerBlock);
   outcome.interrupted = outcome.items_written < total_items;
   outcome.output = plan.output;
+  outcome.multi_scan = plan.multi_scan;
   const double work_fraction = wall_seconds > 0.0 ? busy_seconds / (wall_seconds * plan.threads) : std::nan("");
-  if (!outcome.interrupted) write_summary(trials_path(plan), summary_path(plan), single_scan_metric_columns());
+  if (!outcome.interrupted) write_summary(trials_path(plan), summary_path(plan), plan.metric_columns());
   write_file_atomically(meta_path(plan),
                         meta_json(plan, options, started, outcome.interrupted ? "interrupted" : "complete",
                                   outcome.items_written, wall_seconds, work_fraction, opened.resumed));

@@ -29,13 +29,15 @@ struct RunOutcome {
   long long items_total = 0;
   long long items_written = 0;
   bool interrupted = false;
+  bool multi_scan = false;  // targets.csv was written too
   std::string output;
 };
 
 // Throws InputError for anything wrong before the run starts.
 RunOutcome run_experiment(const RunOptions& options);
 
-// Column names of the single-scan metrics in trials.csv, in order.
+// Column names of the metrics in trials.csv, in order, for single- and multi-scan runs.
 const std::vector<std::string>& single_scan_metric_columns();
+const std::vector<std::string>& multi_scan_metric_columns();
 
 }  // namespace dabench

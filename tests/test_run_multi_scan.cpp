@@ -1,0 +1,209 @@
+// End-to-end `dabench run` on a tiny multi-scan experiment (bearings + jpda-bp):
+//  - trials.csv: one row per (point, trial, algorithm) with the multi-scan metric columns;
+//    targets.csv: one row per (point, trial, algorithm, target), consistent with trials.csv's
+//    n_targets, mean_hpd, max_hpd and mean_entropy; summary.csv one row per (point, algorithm);
+//  - determinism: 1 vs 2 threads give identical files (time_us aside);
+//  - resume: after a hard kill that leaves trials.csv and targets.csv cut anywhere (targets.csv
+//    at least as far as trials.csv, the writer's order), --resume ends with the files of an
+//    uninterrupted run; --resume on a finished run changes nothing;
+//  - draws without targets are skipped:no_targets; configuration errors are one clear line.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tests/support/cli_runner.hpp"
+
+using namespace dabench::test::cli;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Two sweep points (4 and 12 scans), 12 trials, two jpda-bp variants (one SPEC with a comma).
+const char* const kTiny =
+    "scenario = bearings\n"
+    "trials = 12\n"
+    "seed = 3\n"
+    "algorithm = jpda-bp\n"
+    "algorithm = jpda-bp:delta=1e-6,max_iterations=500\n"
+    "[scenario]\n"
+    "particles = 300\n"
+    "mean_targets = 3\n"
+    "[sweep]\n"
+    "scans_per_sensor = 1, 3\n";
+constexpr int kTrials = 12;
+constexpr int kPoints = 2;
+constexpr int kSpecs = 2;
+
+CliResult run_ok(const TempDir& dir, const std::vector<std::string>& args) {
+  const CliResult result = run_dabench(dir, args);
+  INFO("stderr: " << result.err);
+  REQUIRE(result.status == 0);
+  return result;
+}
+
+CsvTable table_without_time(const TempDir& dir, const std::string& relative) {
+  REQUIRE(dir.exists(relative));
+  return parse_csv(dir.read(relative)).without([](const std::string& name) { return name.rfind("time_us", 0) == 0; });
+}
+
+void check_same(const CsvTable& a, const CsvTable& b) {
+  REQUIRE(a.header == b.header);
+  REQUIRE(a.rows.size() == b.rows.size());
+  std::size_t differing = 0;
+  for (std::size_t r = 0; r < a.rows.size(); ++r) differing += a.rows[r] != b.rows[r];
+  CHECK(differing == 0);
+}
+
+// Byte offset of the first row (after the header) whose item (point·trials + trial) is >= item.
+std::size_t offset_of_item(const std::string& text, long long item) {
+  const auto lines = split_lines(text);
+  const CsvTable table = parse_csv(text);
+  const std::size_t point = table.column("point"), trial = table.column("trial");
+  std::size_t offset = lines[0].size() + 1;
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    if (std::stoll(table.rows[r][point]) * kTrials + std::stoll(table.rows[r][trial]) >= item) return offset;
+    offset += lines[r + 1].size() + 1;
+  }
+  return offset;
+}
+
+}  // namespace
+
+TEST_CASE("run multi-scan: trials.csv and targets.csv rows and metrics agree", "[run][multi_scan]") {
+  TempDir dir;
+  dir.write("tiny.ini", kTiny);
+  run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "A"});
+  const CsvTable trials = parse_csv(dir.read("A/trials.csv"));
+  const CsvTable targets = parse_csv(dir.read("A/targets.csv"));
+  for (const char* column : {"point", "particles", "scans_per_sensor", "trial", "seed", "algorithm", "status", "n_targets",
+                             "n_scans", "n_measurements", "mean_hpd", "max_hpd", "mean_entropy", "time_us",
+                             "iterations", "converged"}) {
+    CHECK(trials.find_column(column).has_value());
+  }
+  REQUIRE(trials.rows.size() == static_cast<std::size_t>(kPoints * kTrials * kSpecs));
+  CHECK(targets.header.back() == "entropy");
+  // targets.csv: per (point, trial, algorithm) n_targets rows, whose mean/max match trials.csv.
+  std::map<std::string, std::vector<std::pair<double, double>>> by_key;
+  for (std::size_t r = 0; r < targets.rows.size(); ++r) {
+    const std::string key = targets.at(r, "point") + "/" + targets.at(r, "trial") + "/" + targets.at(r, "algorithm");
+    by_key[key].push_back({to_double(targets.at(r, "hpd")), to_double(targets.at(r, "entropy"))});
+    CHECK(std::stoi(targets.at(r, "target")) == static_cast<int>(by_key[key].size()));
+  }
+  std::size_t target_rows = 0;
+  for (std::size_t r = 0; r < trials.rows.size(); ++r) {
+    const std::string key = trials.at(r, "point") + "/" + trials.at(r, "trial") + "/" + trials.at(r, "algorithm");
+    const int n = std::stoi(trials.at(r, "n_targets"));
+    CHECK(trials.at(r, "n_scans") == (trials.at(r, "scans_per_sensor") == "1" ? "4" : "12"));
+    target_rows += static_cast<std::size_t>(n);
+    if (n == 0) {
+      CHECK(trials.at(r, "status") == "skipped:no_targets");
+      CHECK(by_key.count(key) == 0);
+      continue;
+    }
+    REQUIRE(trials.at(r, "status") == "ok");
+    const auto& values = by_key.at(key);
+    REQUIRE(values.size() == static_cast<std::size_t>(n));
+    double hpd = 0.0, max_hpd = 0.0, entropy = 0.0;
+    for (const auto& [h, e] : values) {
+      CHECK(h >= 0.0);
+      CHECK(h <= 1.0);
+      hpd += h / n;
+      max_hpd = std::max(max_hpd, h);
+      entropy += e / n;
+    }
+    CHECK(to_double(trials.at(r, "mean_hpd")) == Approx(hpd).epsilon(1e-12));
+    CHECK(to_double(trials.at(r, "max_hpd")) == Approx(max_hpd).epsilon(1e-12));
+    CHECK(to_double(trials.at(r, "mean_entropy")) == Approx(entropy).epsilon(1e-12));
+  }
+  CHECK(targets.rows.size() == target_rows);
+  const CsvTable summary = parse_csv(dir.read("A/summary.csv"));
+  CHECK(summary.rows.size() == static_cast<std::size_t>(kPoints * kSpecs));
+  CHECK(summary.find_column("mean_hpd_mean").has_value());
+}
+
+TEST_CASE("run multi-scan: 1 and 2 threads give identical files", "[run][multi_scan][determinism]") {
+  TempDir dir;
+  dir.write("tiny.ini", kTiny);
+  run_ok(dir, {"run", "tiny.ini", "--threads", "1", "--out", "one"});
+  run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "two"});
+  check_same(table_without_time(dir, "one/trials.csv"), table_without_time(dir, "two/trials.csv"));
+  CHECK(dir.read("one/targets.csv") == dir.read("two/targets.csv"));
+  check_same(table_without_time(dir, "one/summary.csv"), table_without_time(dir, "two/summary.csv"));
+  run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "other", "--seed", "4"});
+  CHECK(dir.read("one/targets.csv") != dir.read("other/targets.csv"));
+}
+
+TEST_CASE("run multi-scan: --resume after a hard kill finishes identically", "[run][multi_scan][resume]") {
+  TempDir dir;
+  dir.write("tiny.ini", kTiny);
+  run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "A"});
+  const std::string trials = dir.read("A/trials.csv");
+  const std::string targets = dir.read("A/targets.csv");
+  const std::string meta = dir.read("A/meta.json");
+  const CsvTable reference = table_without_time(dir, "A/trials.csv");
+  const std::size_t trials_header = trials.find('\n') + 1, targets_header = targets.find('\n') + 1;
+  // (what, trials.csv length, targets.csv length); targets.csv always reaches at least as far.
+  const std::vector<std::tuple<std::string, std::size_t, std::size_t>> cuts = {
+      {"both at the same item boundary", offset_of_item(trials, 5), offset_of_item(targets, 5)},
+      {"trials mid-line, targets three items further mid-line", offset_of_item(trials, 7) + 9,
+       offset_of_item(targets, 10) + 11},
+      {"trials header only, targets with rows", trials_header, offset_of_item(targets, 2)},
+      {"targets header only", trials_header, targets_header},
+      {"trials cut, targets complete", offset_of_item(trials, 13) + 4, targets.size()},
+      {"second point, block boundary", offset_of_item(trials, 16), offset_of_item(targets, 16) + 3},
+  };
+  for (const auto& [what, trials_length, targets_length] : cuts) {
+    DYNAMIC_SECTION("cut: " << what) {
+      write_text(dir.work() / "K" / "trials.csv", trials.substr(0, trials_length));
+      write_text(dir.work() / "K" / "targets.csv", targets.substr(0, targets_length));
+      write_text(dir.work() / "K" / "meta.json", meta);
+      run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "K", "--resume"});
+      check_same(reference, table_without_time(dir, "K/trials.csv"));
+      CHECK(dir.read("K/targets.csv") == targets);
+    }
+  }
+  SECTION("--resume on a finished run changes nothing") {
+    run_ok(dir, {"run", "tiny.ini", "--threads", "1", "--out", "A", "--resume"});
+    CHECK(dir.read("A/targets.csv") == targets);
+    check_same(reference, table_without_time(dir, "A/trials.csv"));
+  }
+}
+
+TEST_CASE("run multi-scan: draws without targets are skipped", "[run][multi_scan]") {
+  TempDir dir;
+  dir.write("none.ini", "scenario = bearings\ntrials = 3\nalgorithm = jpda-bp\n[scenario]\nmean_targets = 0\nparticles = 10\n");
+  run_ok(dir, {"run", "none.ini", "--out", "N"});
+  const CsvTable trials = parse_csv(dir.read("N/trials.csv"));
+  REQUIRE(trials.rows.size() == 3);
+  for (std::size_t r = 0; r < 3; ++r) {
+    CHECK(trials.at(r, "status") == "skipped:no_targets");
+    CHECK(trials.at(r, "mean_hpd").empty());
+  }
+  CHECK(split_lines(dir.read("N/targets.csv")).size() == 1);
+}
+
+TEST_CASE("run multi-scan: configuration errors are one clear line", "[run][multi_scan]") {
+  TempDir dir;
+  const auto refused = [&](const std::string& text, const std::vector<std::string>& parts) {
+    dir.write("bad.ini", text);
+    const CliResult result = run_dabench(dir, {"run", "bad.ini", "--out", "B"});
+    CHECK(result.status == 2);
+    for (const auto& part : parts) {
+      INFO("stderr: " << result.err);
+      CHECK(contains(result.err, part));
+    }
+    CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
+    CHECK_FALSE(dir.exists("B"));
+  };
+  refused("scenario = bearings\ntrials = 2\nalgorithm = no-such-method\n",
+          {"bad.ini", "unknown multi-scan algorithm 'no-such-method'", "known: ", "jpda-bp"});
+  refused("scenario = bearings\ntrials = 2\nalgorithm = bp\n", {"'bp' is a single-scan algorithm", "multi-scan"});
+  refused("scenario = grid\ntrials = 2\nalgorithm = jpda-bp\n", {"'jpda-bp' is a multi-scan algorithm"});
+  refused("scenario = bearings\ntrials = 2\nreference = jpda-bp\nalgorithm = jpda-bp\n", {"'reference' lines are not used"});
+  refused("scenario = bearings\ntrials = 2\nalgorithm = jpda-bp\n[scenario]\nparticles = 0\n", {"particles = 0"});
+}
