@@ -49,21 +49,10 @@ std::string shape_error(const MultiScanProblem& problem, const MultiScanBeliefs&
 }  // namespace
 
 MultiScanExecution::MultiScanExecution(const RunPlan& plan, std::vector<std::unique_ptr<MultiScanScenario>> scenarios)
-    : plan_(plan), scenarios_(std::move(scenarios)) {
-  for (std::size_t p = 0; p < plan.point_params.size(); ++p) {
-    std::string prefix = std::to_string(p);
-    for (const KeyValue& kv : plan.point_params[p]) {
-      prefix += ',';
-      append_csv_field(prefix, kv.value);
-    }
-    point_prefix_.push_back(std::move(prefix));
-  }
-  for (const std::string& spec : plan.specs) {
-    std::string field;
-    append_csv_field(field, spec);
-    spec_field_.push_back(std::move(field));
-  }
-}
+    : plan_(plan),
+      scenarios_(std::move(scenarios)),
+      point_prefix_(plan.point_row_prefixes()),
+      spec_field_(plan.spec_fields()) {}
 
 MultiScanWorker MultiScanExecution::make_worker() const {
   MultiScanWorker worker;

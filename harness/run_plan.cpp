@@ -74,6 +74,29 @@ std::string RunPlan::fingerprint() const {
   return fmt::format("{:016x}", hash);
 }
 
+std::vector<std::string> RunPlan::point_row_prefixes() const {
+  std::vector<std::string> prefixes;
+  for (std::size_t p = 0; p < point_params.size(); ++p) {
+    std::string prefix = std::to_string(p);
+    for (const KeyValue& kv : point_params[p]) {
+      prefix += ',';
+      append_csv_field(prefix, kv.value);
+    }
+    prefixes.push_back(std::move(prefix));
+  }
+  return prefixes;
+}
+
+std::vector<std::string> RunPlan::spec_fields() const {
+  std::vector<std::string> fields;
+  for (const std::string& spec : specs) {
+    std::string field;
+    append_csv_field(field, spec);
+    fields.push_back(std::move(field));
+  }
+  return fields;
+}
+
 RunPlan make_run_plan(const RunOptions& options) {
   RunPlan plan;
   plan.experiment = load_experiment(options.experiment_path);

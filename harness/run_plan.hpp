@@ -30,6 +30,10 @@ struct RunPlan {
   std::string trials_header() const;
   std::string targets_header() const;  // multi-scan runs: point, parameters, trial, seed, algorithm, target, hpd, entropy
   std::string fingerprint() const;  // identifies the run for --resume
+  // The leading fields of every row, precomputed once per run: "point,param values" per point,
+  // and the CSV-quoted SPEC per algorithm.
+  std::vector<std::string> point_row_prefixes() const;
+  std::vector<std::string> spec_fields() const;
 };
 
 RunPlan make_run_plan(const RunOptions& options);  // throws InputError
