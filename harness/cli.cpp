@@ -1,5 +1,6 @@
 #include "harness/cli.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -141,8 +142,9 @@ int command_solve(int argc, char** argv) {
         .add("measurements", static_cast<long long>(marginals.measurements()))
         .add("iterations", static_cast<long long>(report.iterations))
         .add("converged", report.converged)
-        .add("w_star", report.w_star)
-        .add_raw("marginals", rows);
+        .add("w_star", report.w_star);
+    if (std::isfinite(report.free_energy)) json.add("free_energy", report.free_energy);
+    json.add_raw("marginals", rows);
     out = json.str();
   }
   std::fputs(out.c_str(), stdout);

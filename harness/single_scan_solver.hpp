@@ -16,12 +16,14 @@ struct SolveReport {
   int iterations = 0;    // for iterative methods; 0 otherwise
   bool converged = true; // false if an iteration cap stopped the method first
   double w_star = std::numeric_limits<double>::quiet_NaN();  // W* of Lemma 2 where computed
+  double free_energy = std::numeric_limits<double>::quiet_NaN();  // objective at the solution where defined (fbp: eq 138)
 
   void reset() {
     skipped.clear();
     iterations = 0;
     converged = true;
     w_star = std::numeric_limits<double>::quiet_NaN();
+    free_energy = std::numeric_limits<double>::quiet_NaN();
   }
 };
 

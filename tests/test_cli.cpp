@@ -382,6 +382,21 @@ TEST_CASE("cli solve: --format json parses and holds the marginals", "[cli][solv
   CHECK(contains(bp.out, "\"algorithm\": \"bp:delta=1e-6,check_every=10\""));
 }
 
+TEST_CASE("cli solve: --format json reports fbp's free energy", "[cli][solve]") {
+  // One target (a tree): at γ = α = β = 1 the minimum of eq (138) is −log Z, Z = 1 + Σψ = 5.
+  TempDir dir;
+  dir.write("w.csv", "0.5,2,1.5\n");
+  const CliResult result = run_ok(dir, {"solve", "--algorithm", "fbp", "--weights", "w.csv", "--format", "json"});
+  INFO("stdout: " << result.out);
+  CHECK(JsonChecker(result.out).valid());
+  const auto at = result.out.find("\"free_energy\": ");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::strtod(result.out.c_str() + at + 15, nullptr) == Approx(-std::log(5.0)).epsilon(1e-12));
+  // Algorithms without a free energy leave the field out.
+  const CliResult bp = run_ok(dir, {"solve", "--algorithm", "bp", "--weights", "w.csv", "--format", "json"});
+  CHECK_FALSE(contains(bp.out, "free_energy"));
+}
+
 // ---------------------------------------------------------------------------------------------
 // run: errors (each leaves the working folder untouched: no output folder, no file)
 

@@ -1,0 +1,282 @@
+#include "algorithms/fractional_bp.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "harness/errors.hpp"
+#include "harness/registry.hpp"
+
+namespace dabench {
+
+std::string FractionalBpOptions::validate() const {
+  if (!(gamma >= 0.0 && gamma <= 1.0)) return "gamma must be in [0, 1]";
+  if (!(alpha > 0.5 && std::isfinite(alpha))) return "alpha must be finite and > 0.5";
+  if (!(alpha >= gamma)) return "alpha must be >= gamma";
+  if (!(beta > 0.5 && std::isfinite(beta))) return "beta must be finite and > 0.5";
+  if (!(beta >= gamma)) return "beta must be >= gamma";
+  if (!(tolerance > 0.0)) return "tolerance must be > 0";
+  if (max_iterations < 1) return "max_iterations must be >= 1";
+  return {};
+}
+
+namespace {
+
+template <class T>
+void grow(std::vector<T>& buffer, std::size_t size) {
+  if (buffer.size() < size) buffer.resize(size);
+}
+
+// The pairwise exponent of eqs (160) and (163): S^{−γ} for the sum S that excludes the pair.
+// γ = 1 (BP) and γ = 0 (pure entropy, no per-pair power) have their own loops.
+enum class Exponent { one, zero, general };
+
+template <Exponent kind>
+inline double excluded_power(double excluded, double gamma) {
+  if constexpr (kind == Exponent::one) return 1.0 / excluded;
+  else if constexpr (kind == Exponent::zero) return 1.0;
+  else return std::pow(excluded, -gamma);
+}
+
+// e^κ S^{−(1−γ)}: the factor shared by all pairs of one row or column.
+inline double shared_factor(double e_kappa, double sum, double gamma) {
+  if (gamma == 1.0) return e_kappa;
+  if (gamma == 0.0) return e_kappa / sum;
+  return e_kappa * std::pow(sum, gamma - 1.0);
+}
+
+// x_ij = factor_j · (C_j − w_ij y_ij)^{−γ} for every stored pair (eq 160).
+template <Exponent kind>
+void pair_messages(int edges, double gamma, const int* __restrict column, const double* __restrict weight,
+                   const double* __restrict from, const double* __restrict sum, const double* __restrict factor,
+                   double* __restrict to) {
+  for (int e = 0; e < edges; ++e) {
+    const int c = column[e];
+    to[e] = factor[c] * excluded_power<kind>(sum[c] - weight[e] * from[e], gamma);
+  }
+}
+
+template <Exponent kind>
+void row_messages(int begin, int end, double gamma, double factor, double sum, const double* __restrict weight,
+                  const double* __restrict from, double* __restrict to, double& largest, double& smallest) {
+  for (int e = begin; e < end; ++e) {
+    const double value = factor * excluded_power<kind>(sum - weight[e] * from[e], gamma);
+    const double ratio = value / to[e];
+    largest = std::max(largest, ratio);
+    smallest = std::min(smallest, ratio);
+    to[e] = value;
+  }
+}
+
+Exponent exponent_of(double gamma) {
+  if (gamma == 1.0) return Exponent::one;
+  if (gamma == 0.0) return Exponent::zero;
+  return Exponent::general;
+}
+
+// x log(x / w), with 0 log 0 = 0.
+double relative_entropy_term(double x, double w) { return x > 0.0 ? x * std::log(x / w) : 0.0; }
+
+}  // namespace
+
+void FractionalBpKernel::build(WeightMatrix w, WeightVector miss_weight, WeightVector clutter_weight) {
+  const int n = static_cast<int>(w.rows());
+  const int m = static_cast<int>(w.cols());
+  if (miss_weight.size() != 0 && miss_weight.size() != n) {
+    throw InputError(fmt::format("fbp: miss_weight has {} entries, expected {} (one per target) or none", miss_weight.size(), n));
+  }
+  if (clutter_weight.size() != 0 && clutter_weight.size() != m) {
+    throw InputError(fmt::format("fbp: clutter_weight has {} entries, expected {} (one per measurement) or none",
+                                 clutter_weight.size(), m));
+  }
+  targets_ = n;
+  measurements_ = m;
+  grow(row_begin_, static_cast<std::size_t>(n) + 1);
+  grow(edge_column_, static_cast<std::size_t>(n) * m);
+  grow(edge_weight_, static_cast<std::size_t>(n) * m);
+  grow(miss_, n);
+  int edges = 0;
+  row_begin_[0] = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < m; ++j) {
+      const double value = w(i, j);
+      if (!(value >= 0.0 && std::isfinite(value))) {
+        throw InputError(fmt::format("fbp: weight w({}, {}) = {} must be finite and >= 0", i + 1, j + 1, value));
+      }
+      if (value == 0.0) continue;  // not gated: q_ij = 0 (Appendix D)
+      edge_column_[edges] = j;
+      edge_weight_[edges++] = value;
+    }
+    row_begin_[i + 1] = edges;
+    const double miss = miss_weight.size() == 0 ? 1.0 : miss_weight[i];
+    if (!(miss > 0.0 && std::isfinite(miss))) {
+      throw InputError(fmt::format("fbp: miss_weight[{}] = {} must be finite and > 0", i + 1, miss));
+    }
+    miss_[i] = miss;
+  }
+  edges_ = edges;
+  grow(clutter_, m);
+  for (int j = 0; j < m; ++j) {
+    const double clutter = clutter_weight.size() == 0 ? 1.0 : clutter_weight[j];
+    if (!(clutter > 0.0 && std::isfinite(clutter))) {
+      throw InputError(fmt::format("fbp: clutter_weight[{}] = {} must be finite and > 0", j + 1, clutter));
+    }
+    clutter_[j] = clutter;
+  }
+  // y ≡ 1 (Algorithm 1, Initialise).
+  grow(x_, edges);
+  grow(y_, edges);
+  std::fill_n(y_.begin(), edges, 1.0);
+  grow(x_miss_, n);
+  grow(y_miss_, n);
+  grow(row_sum_, n);
+  std::fill_n(y_miss_.begin(), n, 1.0);
+  grow(x_clutter_, m);
+  grow(y_clutter_, m);
+  grow(column_sum_, m);
+  grow(column_factor_, m);
+  grow(q_clutter_, m);
+  std::fill_n(y_clutter_.begin(), m, 1.0);
+  grow(q_, static_cast<std::size_t>(n) * (m + 1));
+}
+
+void FractionalBpKernel::column_step(const FractionalBpOptions& options) {
+  const int m = measurements_;
+  const double gamma = options.gamma;
+  for (int j = 0; j < m; ++j) column_sum_[j] = clutter_[j] * y_clutter_[j];
+  for (int e = 0; e < edges_; ++e) column_sum_[edge_column_[e]] += edge_weight_[e] * y_[e];
+  for (int j = 0; j < m; ++j) {
+    const double inverse = 1.0 / column_sum_[j];
+    x_clutter_[j] = inverse;                                   // eq (162)
+    q_clutter_[j] = clutter_[j] * y_clutter_[j] * inverse;     // q_0j = w_0j y_0j x_0j
+    column_factor_[j] = shared_factor(e_kappa_, column_sum_[j], gamma);
+  }
+  switch (exponent_of(gamma)) {  // eq (160)
+    case Exponent::one:
+      pair_messages<Exponent::one>(edges_, gamma, edge_column_.data(), edge_weight_.data(), y_.data(),
+                                   column_sum_.data(), column_factor_.data(), x_.data());
+      break;
+    case Exponent::zero:
+      pair_messages<Exponent::zero>(edges_, gamma, edge_column_.data(), edge_weight_.data(), y_.data(),
+                                    column_sum_.data(), column_factor_.data(), x_.data());
+      break;
+    case Exponent::general:
+      pair_messages<Exponent::general>(edges_, gamma, edge_column_.data(), edge_weight_.data(), y_.data(),
+                                       column_sum_.data(), column_factor_.data(), x_.data());
+      break;
+  }
+  if (options.alpha == 1.0) {  // eq (161): x_i0 ≡ 1
+    std::fill_n(x_miss_.begin(), targets_, 1.0);
+  } else {
+    const double power = 1.0 / options.alpha - 1.0;
+    for (int i = 0; i < targets_; ++i) x_miss_[i] = std::pow(y_miss_[i], power);
+  }
+}
+
+double FractionalBpKernel::row_step(const FractionalBpOptions& options) {
+  const double gamma = options.gamma;
+  const Exponent kind = exponent_of(gamma);
+  double largest = 1.0, smallest = 1.0;  // extreme ratios y_new / y_old
+  for (int i = 0; i < targets_; ++i) {
+    const int begin = row_begin_[i], end = row_begin_[i + 1];
+    double sum = miss_[i] * x_miss_[i];
+    for (int e = begin; e < end; ++e) sum += edge_weight_[e] * x_[e];
+    row_sum_[i] = sum;
+    const double y_miss = 1.0 / sum;  // eq (164)
+    const double ratio = y_miss / y_miss_[i];
+    largest = std::max(largest, ratio);
+    smallest = std::min(smallest, ratio);
+    y_miss_[i] = y_miss;
+    const double factor = shared_factor(e_kappa_, sum, gamma);
+    switch (kind) {  // eq (163)
+      case Exponent::one:
+        row_messages<Exponent::one>(begin, end, gamma, factor, sum, edge_weight_.data(), x_.data(), y_.data(),
+                                    largest, smallest);
+        break;
+      case Exponent::zero:
+        row_messages<Exponent::zero>(begin, end, gamma, factor, sum, edge_weight_.data(), x_.data(), y_.data(),
+                                     largest, smallest);
+        break;
+      case Exponent::general:
+        row_messages<Exponent::general>(begin, end, gamma, factor, sum, edge_weight_.data(), x_.data(), y_.data(),
+                                        largest, smallest);
+        break;
+    }
+  }
+  if (options.beta != 1.0) {  // eq (165); y_0j ≡ 1 when β = 1
+    const double power = 1.0 / options.beta - 1.0;
+    for (int j = 0; j < measurements_; ++j) {
+      const double value = std::pow(x_clutter_[j], power);
+      const double ratio = value / y_clutter_[j];
+      largest = std::max(largest, ratio);
+      smallest = std::min(smallest, ratio);
+      y_clutter_[j] = value;
+    }
+  }
+  return std::log(std::max(largest, 1.0 / smallest));
+}
+
+void FractionalBpKernel::write_outputs() {
+  // Row-normalised read-out of the last iteration: q_ij = w_ij x_ij y_i0, q_i0 = w_i0 x_i0 y_i0,
+  // y_i0 = 1/R_i (eqs 153-154 with 158-159); q_0j was set by the last column step.
+  const int stride = measurements_ + 1;
+  for (int i = 0; i < targets_; ++i) {
+    double* row = q_.data() + static_cast<std::size_t>(i) * stride;
+    const double inverse = 1.0 / row_sum_[i];
+    std::fill_n(row, stride, 0.0);
+    row[0] = miss_[i] * x_miss_[i] * inverse;
+    for (int e = row_begin_[i]; e < row_begin_[i + 1]; ++e) row[1 + edge_column_[e]] = edge_weight_[e] * x_[e] * inverse;
+  }
+}
+
+double FractionalBpKernel::objective(const FractionalBpOptions& options) const {
+  const int stride = measurements_ + 1;
+  double pairs = 0.0, pair_entropy = 0.0, misses = 0.0, clutter = 0.0;
+  for (int i = 0; i < targets_; ++i) {
+    const double* row = q_.data() + static_cast<std::size_t>(i) * stride;
+    misses += relative_entropy_term(row[0], miss_[i]);
+    for (int e = row_begin_[i]; e < row_begin_[i + 1]; ++e) {
+      const double q = row[1 + edge_column_[e]];
+      pairs += relative_entropy_term(q, edge_weight_[e]);
+      if (q < 1.0) pair_entropy += (1.0 - q) * std::log1p(-q);
+    }
+  }
+  for (int j = 0; j < measurements_; ++j) clutter += relative_entropy_term(q_clutter_[j], clutter_[j]);
+  return pairs + options.alpha * misses + options.beta * clutter - options.gamma * pair_entropy;  // eq (138)
+}
+
+FractionalBpOutcome FractionalBpKernel::solve(WeightMatrix w, WeightVector miss_weight, WeightVector clutter_weight,
+                                              const FractionalBpOptions& options) {
+  if (std::string why = options.validate(); !why.empty()) throw InputError("fbp: " + why);
+  build(w, miss_weight, clutter_weight);
+  e_kappa_ = std::exp(-1.0 - options.gamma + options.alpha + options.beta);
+  FractionalBpOutcome outcome;
+  while (!outcome.converged && outcome.iterations < options.max_iterations) {
+    column_step(options);
+    outcome.converged = row_step(options) < options.tolerance;
+    ++outcome.iterations;
+  }
+  write_outputs();
+  outcome.objective = objective(options);
+  return outcome;
+}
+
+FractionalBp::FractionalBp(const Options& options) : options_(options) {
+  if (std::string why = options_.validate(); !why.empty()) throw InputError(std::string(kName) + ": " + why);
+}
+
+void FractionalBp::solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) {
+  report.reset();
+  const FractionalBpOutcome outcome =
+      kernel_.solve(problem.psi, problem.miss_weight, problem.clutter_weight, options_);
+  report.iterations = outcome.iterations;
+  report.converged = outcome.converged;
+  report.free_energy = outcome.objective;
+  marginals.reshape(problem.targets(), problem.measurements());
+  marginals.view() = kernel_.target_marginals();
+}
+
+DABENCH_REGISTER_SINGLE_SCAN(FractionalBp);
+
+}  // namespace dabench
