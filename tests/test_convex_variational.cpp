@@ -233,3 +233,50 @@ TEST_CASE("msbp is exact on tree-structured problems") {
     CHECK(belief_difference(run.beliefs, brute_force_posterior(problem)) < 1e-9);
   }
 }
+
+TEST_CASE("one track with beta = gamma on every scan: the fractional free energy is exact") {
+  // With one track q^{0,j} = 1 − q^{1,j}, so (63) = the exact Gibbs free energy
+  // + Σ_t' (β_t' − γ_t') Σ_j (1 − q^{1,j}) log(1 − q^{1,j}): exact when β_t' = γ_t'.
+  const MultiScanProblem problem = random_multi_scan_problem({1, 4, {2, 3, 2}, 0.2}, 12);
+  const MultiScanBeliefs exact = brute_force_posterior(problem);
+  const Coefficients lemma4{{0.3, 0.3, 0.3}, {0.3, 0.3, 0.3}};
+  CHECK(belief_difference(solve_all(problem, lemma4, tight(KappaWeights::kLemma4)).beliefs, exact) < 1e-9);
+  const Coefficients heuristic{{0.7, 0.7, 0.7}, {0.7, 0.7, 0.7}};
+  CHECK(belief_difference(solve_all(problem, heuristic, tight(KappaWeights::kHeuristic)).beliefs, exact) < 1e-9);
+  // β ≠ γ: the single-track term makes the beliefs differ (the methods' conservatism).
+  const Coefficients cv = coefficients(KappaWeights::kLemma4, {0.25, 0.25, 0.25});
+  CHECK(belief_difference(solve_all(problem, cv, tight(KappaWeights::kLemma4)).beliefs, exact) > 1e-3);
+}
+
+TEST_CASE("all methods against the exact posterior on weakly coupled problems") {
+  // Three tracks, three scans; track i's likelihood for measurement j != i is scaled by 1e-4,
+  // so the graph is nearly a tree: msbp is nearly exact. The convex methods keep the error of
+  // their β_t' − γ_t' single-track terms (above): measured 4e-3 (cvs) to 7e-2 (cvh).
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    MultiScanProblem problem = random_multi_scan_problem({3, 3, {3, 3, 3}, 0.0}, seed);
+    for (ScanFactors& scan : problem.scans) {
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 1; j <= 3; ++j) scan.factor[i].col(j) *= j == i + 1 ? 1.0 : 1e-4;
+      }
+    }
+    const MultiScanRun exact = run_multi_scan("ms-exact", problem);
+    REQUIRE(exact.report.skipped.empty());
+    CHECK(belief_difference(exact.beliefs, brute_force_posterior(problem)) < 1e-12);
+    const MultiScanRun msbp = run_multi_scan("msbp:tolerance=1e-12", problem);
+    CHECK(belief_difference(msbp.beliefs, exact.beliefs) < 1e-7);
+    for (const char* spec : {"cv", "cvs", "cvh", "cvsh", "cvsh1", "cvs:gamma=0.55"}) {
+      const MultiScanRun run = run_multi_scan(spec, problem);
+      INFO(spec << " seed " << seed);
+      REQUIRE(run.report.skipped.empty());
+      CHECK(belief_difference(run.beliefs, exact.beliefs) < 0.1);
+    }
+  }
+}
+
+TEST_CASE("registered methods reject invalid options") {
+  CHECK_THROWS_AS(make_multi_scan_solver("cvs:gamma=1"), InputError);
+  CHECK_THROWS_AS(make_multi_scan_solver("cvsh:gamma=1.5"), InputError);
+  CHECK_THROWS_AS(make_multi_scan_solver("cv:beta_tilde=0.7"), InputError);
+  CHECK_THROWS_AS(make_multi_scan_solver("msbp:max_sweeps=0"), InputError);
+  CHECK_NOTHROW(make_multi_scan_solver("cvsh:gamma=1"));
+}
