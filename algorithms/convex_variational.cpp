@@ -138,7 +138,7 @@ void ConvexVariationalPdca::reweight(const std::vector<double>& gamma, const std
   }
 }
 
-double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettings& settings, SolveReport& report) {
+double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettings& settings) {
   Scan& scan = scans_[t];
   const int n = static_cast<int>(log_prior_.size());
   const int m = scan.measurements;
@@ -275,7 +275,7 @@ void ConvexVariationalPdca::solve(const PdcaSettings& settings, SolveReport& rep
     kernel_failed_ = false;
     for (int t : order) {
       const Kappas k = kappas(settings.weights, gamma, t);
-      change = std::max(change, block_one(t, k, settings, report));
+      change = std::max(change, block_one(t, k, settings));
       if (numerical_failure_) {
         report.skipped = "numerical";
         return;

@@ -120,7 +120,7 @@ class ConvexVariationalPdca {
   };
 
   static Kappas kappas(KappaWeights weights, const std::vector<double>& gamma, int scan);
-  double block_one(int scan, const Kappas& k, const PdcaSettings& settings, SolveReport& report);
+  double block_one(int scan, const Kappas& k, const PdcaSettings& settings);
   double block_two(int scan, const Kappas& k);
 
   KappaWeights weights_ = KappaWeights::kLemma4;  // of the last solve
