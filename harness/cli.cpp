@@ -81,6 +81,8 @@ int command_list() {
   describe(scenario_registry());
   out += "\nMulti-scan scenarios (run multi-scan algorithms; metrics against the truth):\n";
   describe(multi_scan_scenario_registry());
+  out += "\nTracking scenarios (whole runs of K scans, for trackers):\n";
+  describe(tracking_scenario_registry());
   const fs::path folder = experiments_folder();
   out += fmt::format("\nExperiments (in {}):\n", folder.string());
   std::set<fs::path> files;

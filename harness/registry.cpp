@@ -24,6 +24,16 @@ Registry<MultiScanScenario>& multi_scan_scenario_registry() {
   return registry;
 }
 
+Registry<Tracker>& tracker_registry() {
+  static Registry<Tracker> registry;
+  return registry;
+}
+
+Registry<TrackingScenario>& tracking_scenario_registry() {
+  static Registry<TrackingScenario> registry;
+  return registry;
+}
+
 std::unique_ptr<SingleScanSolver> make_single_scan_solver(std::string_view spec_text) {
   const Spec spec = parse_spec(spec_text);
   const auto* entry = single_scan_registry().find(spec.name);
@@ -39,6 +49,15 @@ std::unique_ptr<MultiScanSolver> make_multi_scan_solver(std::string_view spec_te
   if (entry == nullptr) {
     throw InputError(fmt::format("unknown multi-scan algorithm '{}' (known: {})", spec.name,
                                  multi_scan_registry().names()));
+  }
+  return entry->create(spec.settings);
+}
+
+std::unique_ptr<Tracker> make_tracker(std::string_view spec_text) {
+  const Spec spec = parse_spec(spec_text);
+  const auto* entry = tracker_registry().find(spec.name);
+  if (entry == nullptr) {
+    throw InputError(fmt::format("unknown tracker '{}' (known: {})", spec.name, tracker_registry().names()));
   }
   return entry->create(spec.settings);
 }

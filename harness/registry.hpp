@@ -6,8 +6,9 @@
 //
 // where the class provides `using Options = ...;` (a struct with bind() and validate()),
 // `static constexpr std::string_view kName`, `kSummary`, and a constructor from Options.
-// Multiple-scan algorithms use DABENCH_REGISTER_MULTI_SCAN, scenarios DABENCH_REGISTER_SCENARIO
-// (single scan) or DABENCH_REGISTER_MULTI_SCAN_SCENARIO.
+// Multiple-scan algorithms use DABENCH_REGISTER_MULTI_SCAN, trackers DABENCH_REGISTER_TRACKER,
+// scenarios DABENCH_REGISTER_SCENARIO (single scan), DABENCH_REGISTER_MULTI_SCAN_SCENARIO or
+// DABENCH_REGISTER_TRACKING_SCENARIO.
 // Registries are function-local statics, filled before main() by objects in OBJECT libraries
 // (which the linker never drops).
 #include <functional>
@@ -22,6 +23,8 @@
 #include "harness/scenario.hpp"
 #include "harness/multi_scan_solver.hpp"
 #include "harness/single_scan_solver.hpp"
+#include "harness/tracker.hpp"
+#include "harness/tracking_scenario.hpp"
 
 namespace dabench {
 
@@ -62,11 +65,14 @@ Registry<SingleScanSolver>& single_scan_registry();
 Registry<MultiScanSolver>& multi_scan_registry();
 Registry<SingleScanScenario>& scenario_registry();
 Registry<MultiScanScenario>& multi_scan_scenario_registry();
+Registry<Tracker>& tracker_registry();
+Registry<TrackingScenario>& tracking_scenario_registry();
 
 // Parses a SPEC ("bp", "bp:delta=1e-6") and builds the solver; throws InputError for an
 // unknown name, an unknown key or an invalid value.
 std::unique_ptr<SingleScanSolver> make_single_scan_solver(std::string_view spec);
 std::unique_ptr<MultiScanSolver> make_multi_scan_solver(std::string_view spec);
+std::unique_ptr<Tracker> make_tracker(std::string_view spec);
 
 template <class Made, class Product>
 typename Registry<Product>::Entry make_registry_entry() {
@@ -109,6 +115,18 @@ struct MultiScanScenarioRegistration {
   }
 };
 
+template <class Made>
+struct TrackerRegistration {
+  TrackerRegistration() { tracker_registry().add(make_registry_entry<Made, Tracker>()); }
+};
+
+template <class Scenario>
+struct TrackingScenarioRegistration {
+  TrackingScenarioRegistration() {
+    tracking_scenario_registry().add(make_registry_entry<Scenario, TrackingScenario>());
+  }
+};
+
 }  // namespace dabench
 
 #define DABENCH_REGISTER_SINGLE_SCAN(Solver) \
@@ -119,3 +137,7 @@ struct MultiScanScenarioRegistration {
   static const ::dabench::ScenarioRegistration<Scenario> dabench_scenario_registration_##Scenario {}
 #define DABENCH_REGISTER_MULTI_SCAN_SCENARIO(Scenario) \
   static const ::dabench::MultiScanScenarioRegistration<Scenario> dabench_multi_scan_scenario_registration_##Scenario {}
+#define DABENCH_REGISTER_TRACKER(Made) \
+  static const ::dabench::TrackerRegistration<Made> dabench_tracker_registration_##Made {}
+#define DABENCH_REGISTER_TRACKING_SCENARIO(Scenario) \
+  static const ::dabench::TrackingScenarioRegistration<Scenario> dabench_tracking_scenario_registration_##Scenario {}

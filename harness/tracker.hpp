@@ -1,0 +1,19 @@
+#pragma once
+// The interface of trackers (jdt-vb-multipath-othr): the third kind of algorithm beside
+// single-scan and multi-scan ones. A tracker takes a whole run (K scans of measurements and
+// the known model) and returns tracks. It sees the TrackingProblem only, never the truth.
+// As for the other kinds, one tracker object serves one thread for a whole run.
+#include "harness/single_scan_solver.hpp"
+#include "harness/tracking_problem.hpp"
+
+namespace dabench {
+
+class Tracker {
+ public:
+  virtual ~Tracker() = default;
+  // Replaces `tracks` with the run's tracks unless report.skipped is set; iterative trackers
+  // report iterations, convergence and their final objective (free_energy) in `report`.
+  virtual void run(const TrackingProblem& problem, TrackSet& tracks, SolveReport& report) = 0;
+};
+
+}  // namespace dabench
