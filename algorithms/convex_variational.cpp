@@ -12,7 +12,6 @@ namespace {
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 constexpr double kWeightFloor = -600.0;  // log of the smallest relative weight given to Algorithm 1
 constexpr double kShiftLimit = 100.0;    // largest |log| of a row maximum or clutter weight given to it
-constexpr double kOddsLimit = 30.0;      // largest log odds of a pair against a miss or a false alarm
 const double kLogProbabilityFloor = std::log(DBL_MIN);
 
 // log Σ_r exp x(r, c) per column (−∞ for a column that is all −∞).
@@ -174,9 +173,6 @@ double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettin
     const double floor = std::min(log_w.maxCoeff(), 0.0) + kWeightFloor;
     log_w[0] = std::max(log_w[0], floor);
     for (int a = 0; a <= m; ++a) {
-      // Odds of a pair against a miss or a false alarm capped at e^{kOddsLimit}: Algorithm 1
-      // forms "column sum minus own term", which cancels to garbage past ~1e16.
-      if (a > 0) log_w[a] = std::min({log_w[a], log_w[0] + kOddsLimit, std::log(kernel_clutter_[a - 1]) + kOddsLimit});
       const double w = log_w[a] == kMinusInfinity ? 0.0 : std::exp(std::max(log_w[a], floor));
       if (a == 0) kernel_miss_[i] = w;
       else kernel_weight_(i, a - 1) = w;

@@ -33,9 +33,7 @@
 // and sums are log-sum-exp. Exact zeros of ψ stay −∞ (their λ is kept at 0). Two floors keep
 // the logarithms finite where a probability underflows but is not structurally zero: the
 // weights w^{i,j} passed to Algorithm 1 are scaled by their row maximum (which leaves (79)
-// unchanged) and floored at e^{−600}, and the odds of a pair against a miss or a false alarm
-// are capped at e^{30} (Algorithm 1's "sum minus own term" cancels beyond ~1e16; the cap moves
-// probabilities below ~1e−13); its outputs q^{i,j}, q^{0,j} at DBL_MIN. The floors move a
+// unchanged) and floored at e^{−600}; its outputs q^{i,j}, q^{0,j} at DBL_MIN. The floors move a
 // probability below 1e−260 and change no belief visibly. A hypothesis with ψ^i(A) = 0 or an
 // all-zero factor row in some scan has probability 0 in every feasible joint event and is
 // removed (log ψ^i(A) = −∞).
