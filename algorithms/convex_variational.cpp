@@ -266,7 +266,9 @@ void ConvexVariationalPdca::solve(const PdcaSettings& settings, SolveReport& rep
   for (int t = 1; t < count; ++t) order.push_back(t);
   bool converged = count == 0;
   int sweeps = 0;
+  double previous_belief_change = std::numeric_limits<double>::infinity();
   while (!converged && sweeps < settings.max_sweeps) {
+    snapshot_beliefs();
     double change = 0.0;
     kernel_failed_ = false;
     for (int t : order) {
@@ -279,11 +281,37 @@ void ConvexVariationalPdca::solve(const PdcaSettings& settings, SolveReport& rep
       change = std::max(change, block_two(t, k));
     }
     ++sweeps;
-    converged = change < settings.tolerance;
+    // Belief rule: the ascent converges linearly, so with ρ = (this sweep's belief change) /
+    // (the last one's), the beliefs are within change·ρ/(1 − ρ) of their limit.
+    const double belief_change = belief_change_since_snapshot();
+    const double rate = belief_change / previous_belief_change;
+    previous_belief_change = belief_change;
+    const bool beliefs_settled =
+        settings.belief_tolerance > 0.0 && sweeps > 2 &&
+        (belief_change == 0.0 || (rate < 1.0 && belief_change * rate / (1.0 - rate) < settings.belief_tolerance));
+    converged = change < settings.tolerance || beliefs_settled;
   }
   for (Scan& scan : scans_) scan.solved = true;
   report.iterations += sweeps;
   if (!converged || kernel_failed_) report.converged = false;
+}
+
+void ConvexVariationalPdca::snapshot_beliefs() {
+  last_belief_.resize(log_belief_.size());
+  for (std::size_t i = 0; i < log_belief_.size(); ++i) last_belief_[i] = log_belief_[i].array().exp();
+  last_association_.resize(scans_.size());
+  for (std::size_t t = 0; t < scans_.size(); ++t) last_association_[t] = scans_[t].association;
+}
+
+double ConvexVariationalPdca::belief_change_since_snapshot() const {
+  double change = 0.0;
+  for (std::size_t i = 0; i < log_belief_.size(); ++i) {
+    change = std::max(change, (log_belief_[i].array().exp() - last_belief_[i].array()).abs().maxCoeff());
+  }
+  for (std::size_t t = 0; t < scans_.size(); ++t) {
+    change = std::max(change, (scans_[t].association - last_association_[t]).cwiseAbs().maxCoeff());
+  }
+  return change;
 }
 
 void ConvexVariationalPdca::write_beliefs(MultiScanBeliefs& beliefs) const {
