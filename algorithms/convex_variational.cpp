@@ -23,14 +23,13 @@ Eigen::RowVectorXd column_log_sum_exp(const RowMatrix& x) {
   return shift.array() + sum.array().log();
 }
 
-// log Σ_c exp x(r, c) per row (−∞ for a row that is all −∞).
+// log Σ_c exp x(r, c) per row (−∞ for a row that is all −∞). One exp over the whole matrix
+// (vectorised) rather than one short Eigen expression per row.
 Vector row_log_sum_exp(const RowMatrix& x) {
-  Vector out(x.rows());
-  for (Eigen::Index r = 0; r < x.rows(); ++r) {
-    const double top = x.row(r).maxCoeff();
-    out[r] = top == kMinusInfinity ? kMinusInfinity : top + std::log((x.row(r).array() - top).exp().sum());
-  }
-  return out;
+  const Vector top = x.rowwise().maxCoeff();
+  const Vector shift = (top.array() == kMinusInfinity).select(0.0, top);
+  const Vector sum = (x.colwise() - shift).array().exp().rowwise().sum();
+  return shift.array() + sum.array().log();
 }
 
 // log of a normalised distribution from unnormalised log weights.
@@ -137,7 +136,7 @@ void ConvexVariationalPdca::reweight(const std::vector<double>& gamma, const std
   }
 }
 
-double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettings& settings) {
+double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettings& settings, double kernel_tolerance) {
   Scan& scan = scans_[t];
   const int n = static_cast<int>(log_prior_.size());
   const int m = scan.measurements;
@@ -182,7 +181,7 @@ double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettin
   options.gamma = scan.gamma / k1;
   options.alpha = 1.0;
   options.beta = beta_tilde;
-  options.tolerance = settings.kernel_tolerance;
+  options.tolerance = kernel_tolerance;
   options.max_iterations = settings.kernel_max_iterations;
   const FractionalBpOutcome outcome = kernel_.solve(kernel_weight_, kernel_miss_, kernel_clutter_, options);
   if (!outcome.converged) kernel_failed_ = true;
@@ -267,13 +266,19 @@ void ConvexVariationalPdca::solve(const PdcaSettings& settings, SolveReport& rep
   bool converged = count == 0;
   int sweeps = 0;
   double previous_belief_change = std::numeric_limits<double>::infinity();
+  double previous_change = std::numeric_limits<double>::infinity();
+  double previous_rate = 1.0;
   while (!converged && sweeps < settings.max_sweeps) {
     snapshot_beliefs();
+    // Inexact blocks while the duals still move a lot: Algorithm 1 runs to 1e-3 of the last
+    // sweep's largest λ change (at most 1e-3), never tighter than kernel_tolerance, so the
+    // last sweeps use the full accuracy.
+    const double kernel_tolerance = std::max(settings.kernel_tolerance, std::min(1e-3, 1e-3 * previous_change));
     double change = 0.0;
     kernel_failed_ = false;
     for (int t : order) {
       const Kappas k = kappas(settings.weights, gamma, t);
-      change = std::max(change, block_one(t, k, settings));
+      change = std::max(change, block_one(t, k, settings, kernel_tolerance));
       if (numerical_failure_) {
         report.skipped = "numerical";
         return;
@@ -281,15 +286,19 @@ void ConvexVariationalPdca::solve(const PdcaSettings& settings, SolveReport& rep
       change = std::max(change, block_two(t, k));
     }
     ++sweeps;
-    // Belief rule: the ascent converges linearly, so with ρ = (this sweep's belief change) /
-    // (the last one's), the beliefs are within change·ρ/(1 − ρ) of their limit.
+    // Belief rule: the ascent converges linearly, so with ρ the observed rate (the larger of the
+    // last two ratios of successive belief changes, which guards against a lucky sweep while
+    // the blocks are still inexact), the beliefs are within change·ρ/(1 − ρ) of their limit.
     const double belief_change = belief_change_since_snapshot();
-    const double rate = belief_change / previous_belief_change;
+    const double latest_rate = belief_change / previous_belief_change;
+    const double rate = std::max(latest_rate, previous_rate);
     previous_belief_change = belief_change;
+    previous_rate = latest_rate;
     const bool beliefs_settled =
-        settings.belief_tolerance > 0.0 && sweeps > 2 &&
+        settings.belief_tolerance > 0.0 && sweeps > 3 &&
         (belief_change == 0.0 || (rate < 1.0 && belief_change * rate / (1.0 - rate) < settings.belief_tolerance));
     converged = change < settings.tolerance || beliefs_settled;
+    previous_change = change;
   }
   for (Scan& scan : scans_) scan.solved = true;
   report.iterations += sweeps;

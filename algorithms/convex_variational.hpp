@@ -68,7 +68,8 @@ struct PdcaSettings {
   double tolerance = 1e-9;          // stop when no λ entry moved more than this in a sweep
   double belief_tolerance = 0.0;    // or when the beliefs' estimated distance to their limit is below this
   int max_sweeps = 2000;            // sweep cap (converged = false when it stops the ascent)
-  double kernel_tolerance = 1e-11;  // Algorithm 1's stopping tolerance on max |log Δy|
+  double kernel_tolerance = 1e-11;  // Algorithm 1's final stopping tolerance on max |log Δy|
+                                    // (looser in early sweeps: 1e-3 × the last sweep's λ change)
   int kernel_max_iterations = 10000;
 };
 
@@ -127,7 +128,7 @@ class ConvexVariationalPdca {
   };
 
   static Kappas kappas(KappaWeights weights, const std::vector<double>& gamma, int scan);
-  double block_one(int scan, const Kappas& k, const PdcaSettings& settings);
+  double block_one(int scan, const Kappas& k, const PdcaSettings& settings, double kernel_tolerance);
   double block_two(int scan, const Kappas& k);
   void snapshot_beliefs();                     // copies q^i(A), q^{i,j}_t' for the belief rule
   double belief_change_since_snapshot() const;  // largest change of any of them since
