@@ -12,7 +12,6 @@ namespace {
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 constexpr double kWeightFloor = -600.0;  // log of the smallest relative weight given to Algorithm 1
 constexpr double kShiftLimit = 100.0;    // largest |log| of a row maximum or clutter weight given to it
-constexpr double kOddsLimit = 30.0;      // largest log odds of a pair against a miss or a false alarm
 const double kLogProbabilityFloor = std::log(DBL_MIN);
 
 // log Σ_r exp x(r, c) per column (−∞ for a column that is all −∞).
@@ -24,14 +23,13 @@ Eigen::RowVectorXd column_log_sum_exp(const RowMatrix& x) {
   return shift.array() + sum.array().log();
 }
 
-// log Σ_c exp x(r, c) per row (−∞ for a row that is all −∞).
+// log Σ_c exp x(r, c) per row (−∞ for a row that is all −∞). One exp over the whole matrix
+// (vectorised) rather than one short Eigen expression per row.
 Vector row_log_sum_exp(const RowMatrix& x) {
-  Vector out(x.rows());
-  for (Eigen::Index r = 0; r < x.rows(); ++r) {
-    const double top = x.row(r).maxCoeff();
-    out[r] = top == kMinusInfinity ? kMinusInfinity : top + std::log((x.row(r).array() - top).exp().sum());
-  }
-  return out;
+  const Vector top = x.rowwise().maxCoeff();
+  const Vector shift = (top.array() == kMinusInfinity).select(0.0, top);
+  const Vector sum = (x.colwise() - shift).array().exp().rowwise().sum();
+  return shift.array() + sum.array().log();
 }
 
 // log of a normalised distribution from unnormalised log weights.
@@ -138,7 +136,7 @@ void ConvexVariationalPdca::reweight(const std::vector<double>& gamma, const std
   }
 }
 
-double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettings& settings) {
+double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettings& settings, double kernel_tolerance) {
   Scan& scan = scans_[t];
   const int n = static_cast<int>(log_prior_.size());
   const int m = scan.measurements;
@@ -174,9 +172,6 @@ double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettin
     const double floor = std::min(log_w.maxCoeff(), 0.0) + kWeightFloor;
     log_w[0] = std::max(log_w[0], floor);
     for (int a = 0; a <= m; ++a) {
-      // Odds of a pair against a miss or a false alarm capped at e^{kOddsLimit}: Algorithm 1
-      // forms "column sum minus own term", which cancels to garbage past ~1e16.
-      if (a > 0) log_w[a] = std::min({log_w[a], log_w[0] + kOddsLimit, std::log(kernel_clutter_[a - 1]) + kOddsLimit});
       const double w = log_w[a] == kMinusInfinity ? 0.0 : std::exp(std::max(log_w[a], floor));
       if (a == 0) kernel_miss_[i] = w;
       else kernel_weight_(i, a - 1) = w;
@@ -186,7 +181,7 @@ double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettin
   options.gamma = scan.gamma / k1;
   options.alpha = 1.0;
   options.beta = beta_tilde;
-  options.tolerance = settings.kernel_tolerance;
+  options.tolerance = kernel_tolerance;
   options.max_iterations = settings.kernel_max_iterations;
   const FractionalBpOutcome outcome = kernel_.solve(kernel_weight_, kernel_miss_, kernel_clutter_, options);
   if (!outcome.converged) kernel_failed_ = true;
@@ -270,12 +265,20 @@ void ConvexVariationalPdca::solve(const PdcaSettings& settings, SolveReport& rep
   for (int t = 1; t < count; ++t) order.push_back(t);
   bool converged = count == 0;
   int sweeps = 0;
+  double previous_belief_change = std::numeric_limits<double>::infinity();
+  double previous_change = std::numeric_limits<double>::infinity();
+  double previous_rate = 1.0;
   while (!converged && sweeps < settings.max_sweeps) {
+    snapshot_beliefs();
+    // Inexact blocks while the duals still move a lot: Algorithm 1 runs to 1e-3 of the last
+    // sweep's largest λ change (at most 1e-3), never tighter than kernel_tolerance, so the
+    // last sweeps use the full accuracy.
+    const double kernel_tolerance = std::max(settings.kernel_tolerance, std::min(1e-3, 1e-3 * previous_change));
     double change = 0.0;
     kernel_failed_ = false;
     for (int t : order) {
       const Kappas k = kappas(settings.weights, gamma, t);
-      change = std::max(change, block_one(t, k, settings));
+      change = std::max(change, block_one(t, k, settings, kernel_tolerance));
       if (numerical_failure_) {
         report.skipped = "numerical";
         return;
@@ -283,11 +286,41 @@ void ConvexVariationalPdca::solve(const PdcaSettings& settings, SolveReport& rep
       change = std::max(change, block_two(t, k));
     }
     ++sweeps;
-    converged = change < settings.tolerance;
+    // Belief rule: the ascent converges linearly, so with ρ the observed rate (the larger of the
+    // last two ratios of successive belief changes, which guards against a lucky sweep while
+    // the blocks are still inexact), the beliefs are within change·ρ/(1 − ρ) of their limit.
+    const double belief_change = belief_change_since_snapshot();
+    const double latest_rate = belief_change / previous_belief_change;
+    const double rate = std::max(latest_rate, previous_rate);
+    previous_belief_change = belief_change;
+    previous_rate = latest_rate;
+    const bool beliefs_settled =
+        settings.belief_tolerance > 0.0 && sweeps > 3 &&
+        (belief_change == 0.0 || (rate < 1.0 && belief_change * rate / (1.0 - rate) < settings.belief_tolerance));
+    converged = change < settings.tolerance || beliefs_settled;
+    previous_change = change;
   }
   for (Scan& scan : scans_) scan.solved = true;
   report.iterations += sweeps;
   if (!converged || kernel_failed_) report.converged = false;
+}
+
+void ConvexVariationalPdca::snapshot_beliefs() {
+  last_belief_.resize(log_belief_.size());
+  for (std::size_t i = 0; i < log_belief_.size(); ++i) last_belief_[i] = log_belief_[i].array().exp();
+  last_association_.resize(scans_.size());
+  for (std::size_t t = 0; t < scans_.size(); ++t) last_association_[t] = scans_[t].association;
+}
+
+double ConvexVariationalPdca::belief_change_since_snapshot() const {
+  double change = 0.0;
+  for (std::size_t i = 0; i < log_belief_.size(); ++i) {
+    change = std::max(change, (log_belief_[i].array().exp() - last_belief_[i].array()).abs().maxCoeff());
+  }
+  for (std::size_t t = 0; t < scans_.size(); ++t) {
+    change = std::max(change, (scans_[t].association - last_association_[t]).cwiseAbs().maxCoeff());
+  }
+  return change;
 }
 
 void ConvexVariationalPdca::write_beliefs(MultiScanBeliefs& beliefs) const {

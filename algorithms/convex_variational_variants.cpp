@@ -8,8 +8,9 @@ namespace dabench {
 
 namespace {
 
-std::string check_common(double tolerance, int max_sweeps, double beta_tilde) {
+std::string check_common(double tolerance, double belief_tolerance, int max_sweeps, double beta_tilde) {
   if (!(tolerance > 0.0)) return "tolerance must be > 0";
+  if (!(belief_tolerance >= 0.0)) return "belief_tolerance must be >= 0";
   if (max_sweeps < 1) return "max_sweeps must be >= 1";
   // Theorem 1 needs β̃ > 0.5 and Algorithm 1 needs β̃ >= γ̃, and γ̃ < 1 can come close to 1.
   if (!(beta_tilde >= 1.0) || !std::isfinite(beta_tilde)) return "beta_tilde must be >= 1 and finite";
@@ -18,21 +19,21 @@ std::string check_common(double tolerance, int max_sweeps, double beta_tilde) {
 
 }  // namespace
 
-std::string ConvexVariationalOptions::validate() const { return check_common(tolerance, max_sweeps, beta_tilde); }
+std::string ConvexVariationalOptions::validate() const { return check_common(tolerance, belief_tolerance, max_sweeps, beta_tilde); }
 
 std::string SequentialConvexVariationalOptions::validate() const {
   if (!(gamma >= 0.0 && gamma < 1.0)) return "gamma must be in [0, 1) (Lemma 4 needs the sum of gammas < 1)";
-  return check_common(tolerance, max_sweeps, beta_tilde);
+  return check_common(tolerance, belief_tolerance, max_sweeps, beta_tilde);
 }
 
 std::string HeuristicSequentialOptions::validate() const {
   if (!(gamma >= 0.0 && gamma <= 1.0)) return "gamma must be in [0, 1]";
-  return check_common(tolerance, max_sweeps, beta_tilde);
+  return check_common(tolerance, belief_tolerance, max_sweeps, beta_tilde);
 }
 
 std::string SingleSweepOptions::validate() const {
   if (!(gamma >= 0.0 && gamma <= 1.0)) return "gamma must be in [0, 1]";
-  return check_common(1.0, 1, beta_tilde);
+  return check_common(1.0, 0.0, 1, beta_tilde);
 }
 
 void solve_convex_variational(const ConvexVariationalSchedule& schedule, ConvexVariationalPdca& pdca,
@@ -80,6 +81,7 @@ ConvexVariationalSchedule batch(KappaWeights weights, bool bethe, const ConvexVa
   schedule.bethe = bethe;
   schedule.beta_tilde = options.beta_tilde;
   schedule.settings.tolerance = options.tolerance;
+  schedule.settings.belief_tolerance = options.belief_tolerance;
   schedule.settings.max_sweeps = options.max_sweeps;
   return schedule;
 }
@@ -91,6 +93,7 @@ ConvexVariationalSchedule sequential(KappaWeights weights, const SequentialConve
   schedule.gamma = options.gamma;
   schedule.beta_tilde = options.beta_tilde;
   schedule.settings.tolerance = options.tolerance;
+  schedule.settings.belief_tolerance = options.belief_tolerance;
   schedule.settings.max_sweeps = options.max_sweeps;
   return schedule;
 }

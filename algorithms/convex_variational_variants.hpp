@@ -25,11 +25,14 @@ namespace dabench {
 // Options of the methods that iterate to convergence on all scans at once (cv, cvh, msbp).
 struct ConvexVariationalOptions {
   double tolerance = 1e-9;  // stop when no dual variable λ (log units) moved more than this in a sweep
+  double belief_tolerance = 1e-7;  // or when the beliefs are estimated within this of their limit
   int max_sweeps = 2000;    // sweep cap (converged=0 if reached)
   double beta_tilde = 1.0;  // β̃ of the single-scan blocks (79); >= 1 keeps Algorithm 1's β >= γ
 
   void bind(ParamList& params) {
     params.add("tolerance", tolerance, "stop when no dual variable moves more than this in a sweep");
+    params.add("belief_tolerance", belief_tolerance,
+               "or when the beliefs are estimated (from the observed linear rate) within this of their limit; 0: off");
     params.add("max_sweeps", max_sweeps, "backward-forward sweep cap (converged=0 if reached)");
     params.add("beta_tilde", beta_tilde, "false-alarm coefficient seen by the single-scan blocks (eq 79)");
   }
@@ -40,12 +43,15 @@ struct ConvexVariationalOptions {
 struct SequentialConvexVariationalOptions {
   double gamma = 0.95;      // γ of the newest scan (past scans: 0)
   double tolerance = 1e-9;
+  double belief_tolerance = 1e-7;
   int max_sweeps = 2000;    // per step
   double beta_tilde = 1.0;
 
   void bind(ParamList& params) {
     params.add("gamma", gamma, "fractional weight of the newest scan (past scans: 0)");
     params.add("tolerance", tolerance, "stop a step when no dual variable moves more than this in a sweep");
+    params.add("belief_tolerance", belief_tolerance,
+               "or when the beliefs are estimated (from the observed linear rate) within this of their limit; 0: off");
     params.add("max_sweeps", max_sweeps, "backward-forward sweep cap per step (converged=0 if reached)");
     params.add("beta_tilde", beta_tilde, "false-alarm coefficient seen by the single-scan blocks (eq 79)");
   }

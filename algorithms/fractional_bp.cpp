@@ -46,26 +46,45 @@ inline double shared_factor(double e_kappa, double sum, double gamma) {
   return e_kappa * std::pow(sum, gamma - 1.0);
 }
 
-// x_ij = factor_j · (C_j − w_ij y_ij)^{−γ} for every stored pair (eq 160).
+// x_ij = factor_j · (C_j − w_ij y_ij)^{−γ} for every stored pair (eq 160). The sum excluding a
+// pair is formed without cancellation: for the largest term of a column (`top`) it is the sum of
+// the other terms, accumulated separately (`rest`); for any other term t ≤ top, C_j − t ≥ C_j / 2,
+// so the subtraction loses at most one bit. A plain C_j − w_ij y_ij would return 0 or garbage
+// once one term exceeds the rest by ~1e16.
 template <Exponent kind>
 void pair_messages(int edges, double gamma, const int* __restrict column, const double* __restrict weight,
                    const double* __restrict from, const double* __restrict sum, const double* __restrict factor,
-                   double* __restrict to) {
+                   const int* __restrict top, const double* __restrict rest, double* __restrict to) {
   for (int e = 0; e < edges; ++e) {
     const int c = column[e];
-    to[e] = factor[c] * excluded_power<kind>(sum[c] - weight[e] * from[e], gamma);
+    const double excluded = top[c] == e ? rest[c] : sum[c] - weight[e] * from[e];
+    to[e] = factor[c] * excluded_power<kind>(excluded, gamma);
   }
 }
 
+// y_ij of one row (eq 163), with the same leave-one-out rule; tracks the extreme ratios y_new/y_old.
 template <Exponent kind>
-void row_messages(int begin, int end, double gamma, double factor, double sum, const double* __restrict weight,
-                  const double* __restrict from, double* __restrict to, double& largest, double& smallest) {
+void row_messages(int begin, int end, double gamma, double factor, double sum, int top, double rest,
+                  const double* __restrict weight, const double* __restrict from, double* __restrict to,
+                  double& largest, double& smallest) {
   for (int e = begin; e < end; ++e) {
-    const double value = factor * excluded_power<kind>(sum - weight[e] * from[e], gamma);
+    const double excluded = e == top ? rest : sum - weight[e] * from[e];
+    const double value = factor * excluded_power<kind>(excluded, gamma);
     const double ratio = value / to[e];
     largest = std::max(largest, ratio);
     smallest = std::min(smallest, ratio);
     to[e] = value;
+  }
+}
+
+// Adds `term` (of pair `e`) to a sum kept as its largest term plus the rest (see pair_messages).
+inline void add_term(double term, int e, double& top_value, int& top, double& rest) {
+  if (term > top_value) {
+    rest += top_value;
+    top_value = term;
+    top = e;
+  } else {
+    rest += term;
   }
 }
 
@@ -136,6 +155,9 @@ void FractionalBpKernel::build(WeightMatrix w, WeightVector miss_weight, WeightV
   grow(y_clutter_, m);
   grow(column_sum_, m);
   grow(column_factor_, m);
+  grow(column_top_, m);
+  grow(column_top_value_, m);
+  grow(column_rest_, m);
   grow(q_clutter_, m);
   std::fill_n(y_clutter_.begin(), m, 1.0);
   grow(q_, static_cast<std::size_t>(n) * (m + 1));
@@ -144,9 +166,17 @@ void FractionalBpKernel::build(WeightMatrix w, WeightVector miss_weight, WeightV
 void FractionalBpKernel::column_step(const FractionalBpOptions& options) {
   const int m = measurements_;
   const double gamma = options.gamma;
-  for (int j = 0; j < m; ++j) column_sum_[j] = clutter_[j] * y_clutter_[j];
-  for (int e = 0; e < edges_; ++e) column_sum_[edge_column_[e]] += edge_weight_[e] * y_[e];
   for (int j = 0; j < m; ++j) {
+    column_top_value_[j] = 0.0;  // the clutter term is never excluded: it starts in the rest
+    column_top_[j] = -1;
+    column_rest_[j] = clutter_[j] * y_clutter_[j];
+  }
+  for (int e = 0; e < edges_; ++e) {
+    const int j = edge_column_[e];
+    add_term(edge_weight_[e] * y_[e], e, column_top_value_[j], column_top_[j], column_rest_[j]);
+  }
+  for (int j = 0; j < m; ++j) {
+    column_sum_[j] = column_rest_[j] + column_top_value_[j];
     const double inverse = 1.0 / column_sum_[j];
     x_clutter_[j] = inverse;                                   // eq (162)
     q_clutter_[j] = clutter_[j] * y_clutter_[j] * inverse;     // q_0j = w_0j y_0j x_0j
@@ -155,15 +185,15 @@ void FractionalBpKernel::column_step(const FractionalBpOptions& options) {
   switch (exponent_of(gamma)) {  // eq (160)
     case Exponent::one:
       pair_messages<Exponent::one>(edges_, gamma, edge_column_.data(), edge_weight_.data(), y_.data(),
-                                   column_sum_.data(), column_factor_.data(), x_.data());
+                                   column_sum_.data(), column_factor_.data(), column_top_.data(), column_rest_.data(), x_.data());
       break;
     case Exponent::zero:
       pair_messages<Exponent::zero>(edges_, gamma, edge_column_.data(), edge_weight_.data(), y_.data(),
-                                    column_sum_.data(), column_factor_.data(), x_.data());
+                                    column_sum_.data(), column_factor_.data(), column_top_.data(), column_rest_.data(), x_.data());
       break;
     case Exponent::general:
       pair_messages<Exponent::general>(edges_, gamma, edge_column_.data(), edge_weight_.data(), y_.data(),
-                                       column_sum_.data(), column_factor_.data(), x_.data());
+                                       column_sum_.data(), column_factor_.data(), column_top_.data(), column_rest_.data(), x_.data());
       break;
   }
   if (options.alpha == 1.0) {  // eq (161): x_i0 ≡ 1
@@ -180,8 +210,10 @@ double FractionalBpKernel::row_step(const FractionalBpOptions& options) {
   double largest = 1.0, smallest = 1.0;  // extreme ratios y_new / y_old
   for (int i = 0; i < targets_; ++i) {
     const int begin = row_begin_[i], end = row_begin_[i + 1];
-    double sum = miss_[i] * x_miss_[i];
-    for (int e = begin; e < end; ++e) sum += edge_weight_[e] * x_[e];
+    double top_value = 0.0, rest = miss_[i] * x_miss_[i];  // the miss term is never excluded
+    int top = -1;
+    for (int e = begin; e < end; ++e) add_term(edge_weight_[e] * x_[e], e, top_value, top, rest);
+    const double sum = rest + top_value;
     row_sum_[i] = sum;
     const double y_miss = 1.0 / sum;  // eq (164)
     const double ratio = y_miss / y_miss_[i];
@@ -191,15 +223,15 @@ double FractionalBpKernel::row_step(const FractionalBpOptions& options) {
     const double factor = shared_factor(e_kappa_, sum, gamma);
     switch (kind) {  // eq (163)
       case Exponent::one:
-        row_messages<Exponent::one>(begin, end, gamma, factor, sum, edge_weight_.data(), x_.data(), y_.data(),
+        row_messages<Exponent::one>(begin, end, gamma, factor, sum, top, rest, edge_weight_.data(), x_.data(), y_.data(),
                                     largest, smallest);
         break;
       case Exponent::zero:
-        row_messages<Exponent::zero>(begin, end, gamma, factor, sum, edge_weight_.data(), x_.data(), y_.data(),
+        row_messages<Exponent::zero>(begin, end, gamma, factor, sum, top, rest, edge_weight_.data(), x_.data(), y_.data(),
                                      largest, smallest);
         break;
       case Exponent::general:
-        row_messages<Exponent::general>(begin, end, gamma, factor, sum, edge_weight_.data(), x_.data(), y_.data(),
+        row_messages<Exponent::general>(begin, end, gamma, factor, sum, top, rest, edge_weight_.data(), x_.data(), y_.data(),
                                         largest, smallest);
         break;
     }

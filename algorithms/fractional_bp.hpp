@@ -27,6 +27,11 @@
 // grid problems for γ ∈ {0, 0.5, 0.95, 1}, so the default 1e-9 keeps them below 1e-8
 // (tests/test_fractional_bp.cpp checks this).
 //
+// Leave-one-out sums (C_j − w_ij y_ij, R_i − w_ij x_ij) are never formed by subtracting a term
+// that dominates its sum: the largest term of each row and column is kept apart from the sum of
+// the others, so huge odds (a pair 1e200 times likelier than its miss or false alarm) give
+// accurate messages instead of cancellation to 0 or NaN.
+//
 // Sparse and allocation-free: only pairs with w_ij > 0 are stored (q_ij = 0 exactly where
 // w_ij = 0, the convention of Appendix D), and buffers only grow across calls.
 #include <limits>
@@ -112,6 +117,9 @@ class FractionalBpKernel {
   std::vector<double> y_clutter_;     // y_0j
   std::vector<double> column_sum_;    // C_j
   std::vector<double> column_factor_; // e^κ C_j^{−(1−γ)}
+  std::vector<int> column_top_;       // the pair with the largest term w_ij y_ij of C_j (−1: none)
+  std::vector<double> column_top_value_;  // that term
+  std::vector<double> column_rest_;   // C_j minus that term, summed without subtraction
   std::vector<double> q_;             // n×(m+1) output
   std::vector<double> q_clutter_;     // m output
 };

@@ -6,10 +6,12 @@
 //  - a single scan reduces (63) to the single-scan problem (44)/(138) with
 //    w^{i,j} = Σ_A ψ(A) ψ(A, j) (Appendix A-A, eq 116), solved by the fractional BP kernel;
 //  - Theorem 3: reweighting with the factor modification (91) leaves the solution unchanged;
-//  - MSBP is exact where the graph is a tree; all methods against the exact posterior.
+//  - MSBP is exact where the graph is a tree; all methods against the exact posterior;
+//  - the belief stopping rule stops within its tolerance of the limit.
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <string>
 
 #include "algorithms/convex_variational.hpp"
 #include "algorithms/fractional_bp.hpp"
@@ -157,7 +159,7 @@ TEST_CASE("cv on a single scan equals fractional BP on the reduced single-scan p
   // and q(A) = Σ_a q^{i,a} ψ(A) ψ(A, a) / w^{i,a} (eq 116).
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const MultiScanProblem problem = random_multi_scan_problem({3, 4, {3}, 0.2}, 40 + seed);
-    const MultiScanRun run = run_multi_scan("cv:tolerance=1e-12", problem);
+    const MultiScanRun run = run_multi_scan("cv:tolerance=1e-12,belief_tolerance=0", problem);
     REQUIRE(run.report.skipped.empty());
     REQUIRE(run.report.converged);
     const int n = problem.tracks();
@@ -214,7 +216,7 @@ TEST_CASE("Theorem 3: reweighting with the factor modification (91) keeps the so
 TEST_CASE("msbp is exact on tree-structured problems") {
   SECTION("one track") {
     const MultiScanProblem problem = random_multi_scan_problem({1, 4, {2, 3, 1}, 0.2}, 3);
-    const MultiScanRun run = run_multi_scan("msbp:tolerance=1e-12", problem);
+    const MultiScanRun run = run_multi_scan("msbp:tolerance=1e-12,belief_tolerance=0", problem);
     REQUIRE(run.report.converged);
     CHECK(belief_difference(run.beliefs, brute_force_posterior(problem)) < 1e-9);
   }
@@ -228,7 +230,7 @@ TEST_CASE("msbp is exact on tree-structured problems") {
         }
       }
     }
-    const MultiScanRun run = run_multi_scan("msbp:tolerance=1e-12", problem);
+    const MultiScanRun run = run_multi_scan("msbp:tolerance=1e-12,belief_tolerance=0", problem);
     REQUIRE(run.report.converged);
     CHECK(belief_difference(run.beliefs, brute_force_posterior(problem)) < 1e-9);
   }
@@ -262,7 +264,7 @@ TEST_CASE("all methods against the exact posterior on weakly coupled problems") 
     const MultiScanRun exact = run_multi_scan("ms-exact", problem);
     REQUIRE(exact.report.skipped.empty());
     CHECK(belief_difference(exact.beliefs, brute_force_posterior(problem)) < 1e-12);
-    const MultiScanRun msbp = run_multi_scan("msbp:tolerance=1e-12", problem);
+    const MultiScanRun msbp = run_multi_scan("msbp:tolerance=1e-12,belief_tolerance=0", problem);
     CHECK(belief_difference(msbp.beliefs, exact.beliefs) < 1e-7);
     for (const char* spec : {"cv", "cvs", "cvh", "cvsh", "cvsh1", "cvs:gamma=0.55"}) {
       const MultiScanRun run = run_multi_scan(spec, problem);
@@ -273,7 +275,25 @@ TEST_CASE("all methods against the exact posterior on weakly coupled problems") 
   }
 }
 
+TEST_CASE("the belief stopping rule stops early within its tolerance of the limit") {
+  // The rule estimates the distance to the limit from the observed linear rate; compared with
+  // the λ rule run to 1e-12, the beliefs must be within belief_tolerance (1e-7, margin 10×).
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const MultiScanProblem problem = random_multi_scan_problem({3, 4, {3, 2, 3, 2}, 0.0}, seed);
+    for (const std::string method : {"cv", "cvs"}) {
+      INFO(method << " seed " << seed);
+      const MultiScanRun limit = run_multi_scan(method + ":tolerance=1e-12,belief_tolerance=0,max_sweeps=100000", problem);
+      const MultiScanRun early = run_multi_scan(method + ":belief_tolerance=1e-7", problem);
+      REQUIRE(limit.report.converged);
+      REQUIRE(early.report.converged);
+      CHECK(early.report.iterations < limit.report.iterations);
+      CHECK(belief_difference(early.beliefs, limit.beliefs) < 1e-6);
+    }
+  }
+}
+
 TEST_CASE("registered methods reject invalid options") {
+  CHECK_THROWS_AS(make_multi_scan_solver("cv:belief_tolerance=-1"), InputError);
   CHECK_THROWS_AS(make_multi_scan_solver("cvs:gamma=1"), InputError);
   CHECK_THROWS_AS(make_multi_scan_solver("cvsh:gamma=1.5"), InputError);
   CHECK_THROWS_AS(make_multi_scan_solver("cv:beta_tilde=0.7"), InputError);

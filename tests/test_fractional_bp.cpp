@@ -10,12 +10,15 @@
 //  - optimality: (138) at the solution is below (138) at random feasible perturbations (γ < 1),
 //    and the reported objective is (138) recomputed here; γ = 1 on a tree gives −log Z (the
 //    Bethe free energy is exact there), Z by brute force;
-//  - zero weights stay exactly zero; bad parameters and weights are rejected by name.
+//  - zero weights stay exactly zero; bad parameters and weights are rejected by name;
+//  - huge odds (a pair 1e20 or 1e200 times likelier than the rest) give finite, accurate
+//    marginals: exact ones on a tree at γ = 1, the reduced problem's elsewhere.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "algorithms/fractional_bp.hpp"
@@ -373,4 +376,96 @@ TEST_CASE("fbp: the kernel reads strided weight views", "[fbp]") {
   const RowMatrix from_views = kernel.target_marginals();
   kernel.solve(problem.psi, problem.miss_weight, problem.clutter_weight, options);
   CHECK(max_abs_difference(from_views, RowMatrix(kernel.target_marginals())) == 0.0);
+}
+
+TEST_CASE("fbp: huge odds on a tree match brute force", "[fbp]") {
+  // A pair 1e20 or 1e200 times likelier than its alternatives: "column sum minus own term" would
+  // cancel to 0; the kernel must still give BP's (here exact) marginals, small ones included.
+  for (const double odds : {1e20, 1e200}) {
+    RowMatrix psi(3, 4);
+    psi << 0.7, 2.0 * 1e10, 0.0, 0.0,  //
+        0.0, 1.5, 0.3, 0.0,             //
+        0.0, 0.0, 0.0, 4.0 * odds;
+    SingleScanProblem problem;
+    problem.psi = psi;
+    problem.miss_weight = Vector(3);
+    problem.miss_weight << 0.5, 2.0, 1.2;
+    problem.clutter_weight = Vector(4);
+    problem.clutter_weight << 1.0, 0.3, 3.0, 0.8;
+    INFO("odds " << odds);
+    const BruteForceResult exact = brute_force_marginals(problem);
+    auto fbp = make_single_scan_solver("fbp");
+    const SolveResult result = run_solver(*fbp, problem);
+    REQUIRE(result.report.converged);
+    const RowMatrix q = result.marginals;
+    REQUIRE(q.allFinite());
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      for (Eigen::Index j = 0; j < q.cols(); ++j) {
+        INFO("entry " << i << " " << j << ": " << q(i, j) << " vs " << exact.marginals(i, j));
+        CHECK(std::fabs(q(i, j) - exact.marginals(i, j)) <= 1e-8 * exact.marginals(i, j));
+      }
+    }
+  }
+}
+
+TEST_CASE("fbp: a dominant pair leaves the rest of the problem to the reduced problem", "[fbp]") {
+  // With q_ij → 1 for one pair, (138) splits: row i and column j carry vanishing mass and
+  // the other entries solve (138) on the problem without target i and measurement j. (At γ = 0
+  // the split is only O(odds^{-1/2}) and Algorithm 1, then Sinkhorn scaling, needs ~1e5
+  // iterations at odds 1e10: that case is left out.)
+  RandomStream rng(77, 1, 0);
+  const SingleScanProblem base = random_problem(rng, 4, 5, Density::dense, true);
+  const int top_i = 1, top_j = 2;
+  SingleScanProblem reduced;
+  reduced.psi = RowMatrix(3, 4);
+  reduced.miss_weight = Vector(3);
+  reduced.clutter_weight = Vector(4);
+  for (int i = 0, ri = 0; i < 4; ++i) {
+    if (i == top_i) continue;
+    reduced.miss_weight[ri] = base.miss_weight[i];
+    for (int j = 0, rj = 0; j < 5; ++j) {
+      if (j == top_j) continue;
+      reduced.psi(ri, rj++) = base.psi(i, j);
+    }
+    ++ri;
+  }
+  for (int j = 0, rj = 0; j < 5; ++j) {
+    if (j != top_j) reduced.clutter_weight[rj++] = base.clutter_weight[j];
+  }
+  FractionalBpKernel kernel;
+  // β > 1 spreads q_0j (the mass left in column j decays like odds^{-1/β}): at 1e20 only β = 1.
+  const std::pair<double, double> cases[] = {{1e20, 1.0}, {1e200, 1.0}, {1e200, 2.5}};
+  for (const auto [odds, beta] : cases) {
+    for (const double gamma : {0.5, 0.95, 1.0}) {
+      INFO("odds " << odds << " gamma " << gamma << " beta " << beta);
+      SingleScanProblem problem = base;
+      problem.psi(top_i, top_j) *= odds;
+      const FractionalBpOptions options = options_of(gamma, 1.0, beta);
+      const KernelRun run = run_kernel(kernel, problem, options);
+      const KernelRun small = run_kernel(kernel, reduced, options);
+      REQUIRE(run.outcome.converged);
+      REQUIRE(run.primal.q.allFinite());
+      CHECK(run.primal.q(top_i + 1, top_j + 1) > 1.0 - 1e-9);
+      double largest_other = 0.0;  // the rest of row i and column j: positive and tiny
+      for (int j = 0; j <= 5; ++j) {
+        if (j != top_j + 1) largest_other = std::max(largest_other, run.primal.q(top_i + 1, j));
+        CHECK((j == top_j + 1 || run.primal.q(top_i + 1, j) > 0.0));
+      }
+      for (int i = 0; i <= 4; ++i) {
+        if (i != top_i + 1) largest_other = std::max(largest_other, run.primal.q(i, top_j + 1));
+      }
+      CHECK(largest_other < 1e-9);
+      double difference = 0.0;
+      for (int i = 0, ri = 0; i <= 4; ++i) {
+        if (i == top_i + 1) continue;
+        for (int j = 0, rj = 0; j <= 5; ++j) {
+          if (j == top_j + 1) continue;
+          if (i > 0 || j > 0) difference = std::max(difference, std::fabs(run.primal.q(i, j) - small.primal.q(ri, rj)));
+          ++rj;
+        }
+        ++ri;
+      }
+      CHECK(difference < 1e-8);
+    }
+  }
 }
