@@ -435,7 +435,7 @@ TEST_CASE("fbp: a dominant pair leaves the rest of the problem to the reduced pr
   FractionalBpKernel kernel;
   // β > 1 spreads q_0j (the mass left in column j decays like odds^{-1/β}): at 1e20 only β = 1.
   const std::pair<double, double> cases[] = {{1e20, 1.0}, {1e200, 1.0}, {1e200, 2.5}};
-  for (const auto [odds, beta] : cases) {
+  for (const auto& [odds, beta] : cases) {
     for (const double gamma : {0.5, 0.95, 1.0}) {
       INFO("odds " << odds << " gamma " << gamma << " beta " << beta);
       SingleScanProblem problem = base;
