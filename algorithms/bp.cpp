@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <utility>
 
 #include "harness/registry.hpp"
 
@@ -106,17 +107,19 @@ double BeliefPropagation::build_edges(const SingleScanProblem& problem) {
   int shared_columns = 0;
   for (int j = 0; j < m; ++j) compact_column_[j] = column_degree_[j] > 1 ? shared_columns++ : -1;
 
-  // Shared edges, target by target. Buffers only grow, so steady-state solves do not allocate.
+  stride_ = (shared_columns + 3) / 4 * 4;
+  carve_arena(n, m);
+
+  // Shared edges, target by target.
   grow(active_target_, n);
   grow(active_begin_, n + 1);
-  grow(base_, n);
-  grow(psi_, static_cast<std::size_t>(n) * m);
   grow(row_, static_cast<std::size_t>(n) * m);
   grow(column_, static_cast<std::size_t>(n) * m);
-  active_of_target_.assign(n, -1);
+  grow(measurement_, static_cast<std::size_t>(n) * m);
   int edges = 0, active = 0;
   active_begin_[0] = 0;
   if (shared_columns > 0) {
+    // Every gated pair is written at the next slot, which only a shared one keeps.
     for (int i = 0; i < n; ++i) {
       const double* row = weights_ + static_cast<std::size_t>(i) * m;
       double base = 1.0;
@@ -125,58 +128,79 @@ double BeliefPropagation::build_edges(const SingleScanProblem& problem) {
         const double psi = row[j];
         if (!(psi > 0.0)) continue;
         const int c = compact_column_[j];
-        if (c < 0) {
-          base += psi;  // exclusive measurement: ν ≡ 1
-        } else {
-          psi_[edges] = psi;
-          row_[edges] = active;
-          column_[edges++] = c;
-        }
+        base += c < 0 ? psi : 0.0;  // exclusive measurement: ν ≡ 1
+        psi_[edges] = psi;
+        row_[edges] = active;
+        column_[edges] = c;
+        measurement_[edges] = j;
+        edges += c >= 0;
       }
-      if (edges != first) {
-        active_of_target_[i] = active;
-        active_target_[active] = i;
-        base_[active++] = base;
-        active_begin_[active] = edges;
-      }
+      active_target_[active] = i;
+      base_[active] = base;
+      active += edges != first;
+      active_begin_[active] = edges;
     }
   }
   edges_ = edges;
   active_ = active;
-  stride_ = (shared_columns + 3) / 4 * 4;
   dense_ = edges > 0 && active * stride_ <= options_.dense_cells && active * stride_ <= 4 * edges;
   cells_ = dense_ ? active * stride_ : edges;
   if (dense_) {
     grow(edge_cell_, edges);
-    grow(block_psi_, cells_);
-    grow(block_product_, cells_);
-    std::fill_n(block_psi_.begin(), cells_, 0.0);
+    std::fill_n(block_psi_, cells_, 0.0);
     for (int e = 0; e < edges; ++e) {
       edge_cell_[e] = row_[e] * stride_ + column_[e];
       block_psi_[edge_cell_[e]] = psi_[e];
     }
   }
-  grow(nu_, cells_);
-  grow(mu_, cells_);
-  grow(nu_previous_, cells_);
-  std::fill_n(nu_.begin(), cells_, 1.0);  // ν_{j→i,0} = 1 (Fig. 3)
-  grow(row_sum_, active);
+  std::fill_n(nu_, cells_, 1.0);  // ν_{j→i,0} = 1 (Fig. 3)
   columns_ = dense_ ? stride_ : shared_columns;
-  grow(column_sum_, columns_);
   return w_star;
+}
+
+void BeliefPropagation::carve_arena(int n, int m) {
+  // Upper bounds: shared edges ≤ n·m, dense cells = active·stride ≤ n·stride. Every array
+  // starts on a cache line (8 doubles); the arena only grows.
+  const auto lines = [](std::size_t count) { return (count + 7) / 8 * 8; };
+  const std::size_t targets = lines(static_cast<std::size_t>(n));
+  const std::size_t pairs = lines(static_cast<std::size_t>(n) * m);
+  const std::size_t cells = std::max(pairs, lines(static_cast<std::size_t>(n) * stride_));
+  const std::size_t columns = lines(static_cast<std::size_t>(std::max(m, stride_)));
+  const std::size_t total = 2 * targets + pairs + 5 * cells + columns;
+  if (arena_.size() < total) arena_.resize(total);
+  double* next = arena_.data();
+  const auto take = [&next](std::size_t count) { return std::exchange(next, next + count); };
+  base_ = take(targets);
+  row_sum_ = take(targets);
+  psi_ = take(pairs);
+  block_psi_ = take(cells);
+  block_product_ = take(cells);
+  mu_ = take(cells);
+  nu_ = take(cells);
+  nu_previous_ = take(cells);
+  column_sum_ = take(columns);
 }
 
 void BeliefPropagation::iterate_once() {
   if (dense_) {
-    bp_iteration_dense(active_, stride_, base_.data(), block_psi_.data(), block_product_.data(), column_sum_.data(),
-                       mu_.data(), nu_.data());
+    bp_iteration_dense(active_, stride_, base_, block_psi_, block_product_, column_sum_, mu_, nu_);
     return;
   }
-  bp_iteration(active_, edges_, columns_, active_begin_.data(), base_.data(), psi_.data(), row_.data(), column_.data(),
-               row_sum_.data(), column_sum_.data(), mu_.data(), nu_.data());
+  bp_iteration(active_, edges_, columns_, active_begin_.data(), base_, psi_, row_.data(), column_.data(), row_sum_,
+               column_sum_, mu_, nu_);
 }
 
 bool BeliefPropagation::converged() const {
+  // Division-free pre-test: the stopping rule below fails whenever some ratio ν/ν̃ (or ν̃/ν)
+  // exceeds 1/(1 − stop/W*) (see the cheap test below); with a 1e-12 relative margin
+  // against rounding, this only returns early where the full test would also say no.
+  if (w_star_ > stop_level_) {
+    const double bound = (1.0 + 1e-12) / (1.0 - stop_level_ / w_star_);
+    for (int e = 0; e < edges_; ++e) {
+      const int cell = dense_ ? edge_cell_[e] : e;
+      if (nu_[cell] > bound * nu_previous_[cell] || nu_previous_[cell] > bound * nu_[cell]) return false;
+    }
+  }
   double largest = 1.0, smallest = 1.0;  // extreme ratios ν/ν̃; d = log max(largest, 1/smallest)
   for (int e = 0; e < edges_; ++e) {
     const int cell = dense_ ? edge_cell_[e] : e;  // cells without an edge are not messages
@@ -196,21 +220,18 @@ bool BeliefPropagation::converged() const {
 }
 
 void BeliefPropagation::write_beliefs(int n, int m, MarginalTable& marginals) const {
-  // Beliefs, eq (22): p_ij = ψ_ij ν_ji / s, p_i0 = 1/s, s = 1 + Σ_j ψ_ij ν_ji.
+  // Beliefs, eq (22): p_ij = ψ_ij ν_ji / s, p_i0 = 1/s, s = 1 + Σ_j ψ_ij ν_ji; ν ≡ 1 off the
+  // shared edges, so the row starts as ψ and only shared edges are scaled.
   marginals.reshape(n, m);
+  for (int i = 0; i < n; ++i) std::copy_n(weights_ + static_cast<std::size_t>(i) * m, m, marginals.row(i) + 1);
+  for (int a = 0; a < active_; ++a) {
+    double* row = marginals.row(active_target_[a]) + 1;
+    for (int e = active_begin_[a]; e < active_begin_[a + 1]; ++e) row[measurement_[e]] *= nu_[dense_ ? edge_cell_[e] : e];
+  }
   for (int i = 0; i < n; ++i) {
-    const double* weights = weights_ + static_cast<std::size_t>(i) * m;
     double* row = marginals.row(i);
-    const int a = active_of_target_[i];
-    int edge = a < 0 ? 0 : active_begin_[a];  // shared edges of i, in measurement order
     double s = 1.0;
-    for (int j = 0; j < m; ++j) {
-      const double psi = weights[j];
-      double value = 0.0;
-      if (psi > 0.0) value = compact_column_[j] < 0 ? psi : psi * nu_[dense_ ? edge_cell_[edge++] : edge++];
-      row[j + 1] = value;
-      s += value;
-    }
+    for (int j = 1; j <= m; ++j) s += row[j];
     const double inverse = 1.0 / s;
     row[0] = inverse;
     for (int j = 1; j <= m; ++j) row[j] *= inverse;
@@ -228,7 +249,7 @@ void BeliefPropagation::solve(const SingleScanProblem& problem, MarginalTable& m
   while (!done && iterations < options_.max_iterations) {
     const int block = std::min(options_.check_every, options_.max_iterations - iterations);
     for (int k = 1; k < block; ++k) iterate_once();
-    std::copy_n(nu_.begin(), cells_, nu_previous_.begin());  // ν̃ of Fig. 3
+    std::copy_n(nu_, cells_, nu_previous_);  // ν̃ of Fig. 3
     iterate_once();
     iterations += block;
     done = converged();

@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "harness/cache_aligned.hpp"
 #include "harness/params.hpp"
 #include "harness/single_scan_solver.hpp"
 
@@ -49,10 +50,13 @@ class BeliefPropagation final : public SingleScanSolver {
       "loopy BP, simplified messages eqs (20)-(22), Fig. 3 with the Theorem-3 stopping rule";
 
   explicit BeliefPropagation(const Options& options) : options_(options) {}
+  BeliefPropagation(const BeliefPropagation&) = delete;  // the message arrays point into arena_
+  BeliefPropagation& operator=(const BeliefPropagation&) = delete;
   void solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) override;
 
  private:
   double build_edges(const SingleScanProblem& problem);  // returns W*
+  void carve_arena(int targets, int measurements);       // points the message arrays into arena_
   void iterate_once();
   bool converged() const;  // Theorem-3 test on ν against ν̃
   void write_beliefs(int targets, int measurements, MarginalTable& marginals) const;
@@ -65,29 +69,32 @@ class BeliefPropagation final : public SingleScanSolver {
   int active_ = 0;                   // targets with a shared edge
   int cells_ = 0;                    // message slots: edges, or block cells in dense mode
   int columns_ = 0;                  // column sums in use (shared measurements or stride)
-  // The buffers below only grow; the counts above say how much of each is in use.
   double stop_level_ = 0.0;          // ½ log(1 + δ)
   const double* weights_ = nullptr;  // normalised ψ of the current problem, row-major n×m
-  std::vector<double> normalized_;   // storage for it when side weights are not all 1
+  // Index buffers only grow, so steady-state solves do not allocate.
+  std::vector<double> normalized_;   // storage for weights_ when side weights are not all 1
   std::vector<int> column_degree_;   // gated targets per measurement
   std::vector<int> compact_column_;  // measurement → shared-measurement index, or -1
   // Targets with at least one shared measurement ("active"); their shared edges are stored
   // contiguously, target by target, in increasing measurement order.
   std::vector<int> active_target_;
   std::vector<int> active_begin_;    // size active+1
-  std::vector<double> base_;         // 1 + Σ ψ over the target's exclusive measurements
-  std::vector<int> active_of_target_;  // target → active index, or -1
-  std::vector<double> psi_;
   std::vector<int> row_;             // active index of each shared edge's target
   std::vector<int> column_;          // shared-measurement index of each shared edge
+  std::vector<int> measurement_;     // measurement of each shared edge
   std::vector<int> edge_cell_;       // dense mode: block cell of each shared edge
-  std::vector<double> block_psi_;    // dense mode: ψ over the block, 0 where there is no edge
-  std::vector<double> block_product_;  // dense mode: ψ·ν scratch
-  std::vector<double> mu_;           // per shared edge, or per block cell in dense mode
-  std::vector<double> nu_;           // (likewise)
-  std::vector<double> nu_previous_;  // ν̃ of Fig. 3
-  std::vector<double> row_sum_;      // 1 + Σ_j ψ_ij ν_ji per active target
-  std::vector<double> column_sum_;   // 1 + Σ_i μ_ij per shared measurement
+  // The arrays the iteration touches, carved from one cache-aligned arena (it only grows) at
+  // offsets fixed by the problem size, so their placement is the same on every solve.
+  CacheAlignedVector<double> arena_;
+  double* base_ = nullptr;           // 1 + Σ ψ over the target's exclusive measurements
+  double* psi_ = nullptr;            // ψ per shared edge
+  double* block_psi_ = nullptr;      // dense mode: ψ over the block, 0 where there is no edge
+  double* block_product_ = nullptr;  // dense mode: ψ·ν scratch
+  double* mu_ = nullptr;             // per shared edge, or per block cell in dense mode
+  double* nu_ = nullptr;             // (likewise)
+  double* nu_previous_ = nullptr;    // ν̃ of Fig. 3
+  double* row_sum_ = nullptr;        // 1 + Σ_j ψ_ij ν_ji per active target
+  double* column_sum_ = nullptr;     // 1 + Σ_i μ_ij per shared measurement
 };
 
 }  // namespace dabench
