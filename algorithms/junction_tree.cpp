@@ -64,28 +64,25 @@ void JunctionTreeBuilder::add_edge(int a, int b) {
   set_bit(row(adjacency_, b), a);
 }
 
-bool JunctionTreeBuilder::build(std::uint64_t max_clique_entries) {
+bool JunctionTreeBuilder::eliminate(EliminationRule rule, std::uint64_t max_clique_entries) {
   const int n = vars_;
   const int words = words_;
-  work_.assign(adjacency_.begin(), adjacency_.end());  // build() leaves the graph intact
-  elim_cliques_.assign(static_cast<std::size_t>(n) * words, 0);
+  work_.assign(adjacency_.begin(), adjacency_.end());  // elimination leaves the graph intact
+  candidate_cliques_.assign(static_cast<std::size_t>(n) * words, 0);
   alive_.assign(words, 0);
   for (int v = 0; v < n; ++v) set_bit(alive_.data(), v);
-  elimination_order_.clear();
-  clique_begin_.assign(1, 0);
-  clique_vars_.clear();
-  parent_.clear();
-  clique_entries_.clear();
+  candidate_order_.clear();
+  const bool by_fill = rule == EliminationRule::min_fill || rule == EliminationRule::min_fill_by_index;
 
-  // 1. Min-fill elimination; ties by min-weight (Π domain over the clique formed), then index.
   for (int step = 0; step < n; ++step) {
     int best = -1;
     std::int64_t best_fill = 0;
-    std::uint64_t best_weight = 0;
+    std::uint64_t best_weight = 0, best_weighted_fill = 0;
     for_each_bit(alive_.data(), words, [&](int v) {
       const std::uint64_t* nb = row(work_, v);
       std::int64_t twice_fill = 0;  // each missing neighbour pair counted from both ends
-      std::uint64_t weight = static_cast<std::uint64_t>(domain_[v]);
+      std::uint64_t twice_weighted_fill = 0;
+      std::uint64_t weight = static_cast<std::uint64_t>(domain_[v]);  // Π domain of the clique formed
       bool worse = false;
       for_each_bit(nb, words, [&](int u) {
         if (worse) return;
@@ -94,19 +91,49 @@ bool JunctionTreeBuilder::build(std::uint64_t max_clique_entries) {
         int missing = 0;
         for (int w = 0; w < words; ++w) missing += std::popcount(nb[w] & ~nu[w]);
         twice_fill += missing - 1;  // u itself is in nb but not in nu
-        if (best >= 0 && twice_fill > 2 * best_fill) worse = true;
+        if (rule == EliminationRule::weighted_min_fill) {
+          std::uint64_t partners = 0;  // Σ domain over the neighbours u is not yet joined to
+          for (int w = 0; w < words; ++w) {
+            for_each_bit(&nb[w], 1, [&](int bit) {
+              const int x = w * 64 + bit;
+              if (x != u && !(nu[x >> 6] >> (x & 63) & 1)) partners += static_cast<std::uint64_t>(domain_[x]);
+            });
+          }
+          twice_weighted_fill =
+              saturating_add(twice_weighted_fill, saturating_multiply(partners, static_cast<std::uint64_t>(domain_[u])));
+        }
+        if (by_fill && best >= 0 && twice_fill > 2 * best_fill) worse = true;
       });
       if (worse) return;
       const std::int64_t fill = twice_fill / 2;
-      if (best < 0 || fill < best_fill || (fill == best_fill && weight < best_weight)) {
+      const std::uint64_t weighted_fill = twice_weighted_fill / 2;
+      bool better = best < 0;
+      if (!better) {
+        switch (rule) {
+          case EliminationRule::min_fill:
+            better = fill < best_fill || (fill == best_fill && weight < best_weight);
+            break;
+          case EliminationRule::min_fill_by_index:
+            better = fill < best_fill;
+            break;
+          case EliminationRule::min_weight:
+            better = weight < best_weight;
+            break;
+          case EliminationRule::weighted_min_fill:
+            better = weighted_fill < best_weighted_fill || (weighted_fill == best_weighted_fill && weight < best_weight);
+            break;
+        }
+      }
+      if (better) {
         best = v;
         best_fill = fill;
         best_weight = weight;
+        best_weighted_fill = weighted_fill;
       }
     });
     if (best_weight > max_clique_entries) return false;
     std::uint64_t* nb = row(work_, best);
-    std::uint64_t* clique = row(elim_cliques_, step);
+    std::uint64_t* clique = row(candidate_cliques_, step);
     for (int w = 0; w < words; ++w) clique[w] = nb[w];
     set_bit(clique, best);
     for_each_bit(nb, words, [&](int u) {
@@ -117,23 +144,63 @@ bool JunctionTreeBuilder::build(std::uint64_t max_clique_entries) {
     });
     for (int w = 0; w < words; ++w) nb[w] = 0;
     clear_bit(alive_.data(), best);
-    elimination_order_.push_back(best);
+    candidate_order_.push_back(best);
   }
+  return true;
+}
 
-  // 2. Maximal cliques: an elimination clique is contained only in earlier ones (the later
-  // ones lack its eliminated variable).
-  maximal_.clear();
+std::uint64_t JunctionTreeBuilder::find_maximal_cliques() {
+  // An elimination clique is contained only in earlier ones (the later ones lack its
+  // eliminated variable).
+  const int n = vars_;
+  const int words = words_;
+  candidate_maximal_.clear();
+  std::uint64_t total = 0;
   for (int t = 0; t < n; ++t) {
-    const std::uint64_t* ct = row(elim_cliques_, t);
+    const std::uint64_t* ct = row(candidate_cliques_, t);
     bool contained = false;
     for (int s = 0; s < t && !contained; ++s) {
-      const std::uint64_t* cs = row(elim_cliques_, s);
+      const std::uint64_t* cs = row(candidate_cliques_, s);
       bool subset = true;
       for (int w = 0; w < words && subset; ++w) subset = (ct[w] & ~cs[w]) == 0;
       contained = subset;
     }
-    if (!contained) maximal_.push_back(t);
+    if (contained) continue;
+    candidate_maximal_.push_back(t);
+    std::uint64_t entries = 1;
+    for_each_bit(ct, words, [&](int v) { entries = saturating_multiply(entries, static_cast<std::uint64_t>(domain_[v])); });
+    total = saturating_add(total, entries);
   }
+  return total;
+}
+
+bool JunctionTreeBuilder::build(std::uint64_t max_total_entries) {
+  const int words = words_;
+  clique_begin_.assign(1, 0);
+  clique_vars_.clear();
+  parent_.clear();
+  clique_entries_.clear();
+
+  // 1-2. Elimination orders by each rule in turn (the later ones only for large tables); keep
+  // the one whose maximal cliques have the fewest entries in all.
+  constexpr EliminationRule kRules[] = {EliminationRule::min_fill, EliminationRule::min_fill_by_index,
+                                        EliminationRule::min_weight, EliminationRule::weighted_min_fill};
+  bool found = false;
+  total_clique_entries_ = kSaturated;
+  for (const EliminationRule rule : kRules) {
+    if (found && total_clique_entries_ <= kTryOtherRulesAbove) break;
+    const std::uint64_t bound = std::min(max_total_entries, total_clique_entries_);
+    if (!eliminate(rule, bound)) continue;
+    const std::uint64_t total = find_maximal_cliques();
+    if (total > bound || (found && total >= total_clique_entries_)) continue;
+    found = true;
+    total_clique_entries_ = total;
+    rule_ = rule;
+    elim_cliques_.swap(candidate_cliques_);
+    elimination_order_.swap(candidate_order_);
+    maximal_.swap(candidate_maximal_);
+  }
+  if (!found) return false;
 
   // 3. Maximum-weight spanning tree (Prim from the first maximal clique; ties to the lowest
   // index), weight = shared variables. Cliques are renumbered in the order Prim adds them.

@@ -16,7 +16,11 @@
 //  1. Elimination order by min-fill (fewest fill edges added), ties broken by min-weight (the
 //     product of the domain sizes of the clique the elimination creates), then by the lowest
 //     target index. The elimination cliques that are not contained in another are the maximal
-//     cliques of the triangulated graph.
+//     cliques of the triangulated graph. When these hold more than 2^16 entries in all, three
+//     more greedy orders are tried and the one with the fewest clique entries kept: min-fill
+//     with ties to the lowest index (libDAI JTree's default rule, so jt never needs more clique
+//     states than libDAI on the same graph), min-weight, and weighted min-fill (each fill edge
+//     weighted by the product of its two domain sizes).
 //  2. Clique tree: a maximum-weight spanning tree (Prim) of the cliques with weight = the number
 //     of shared variables; for the maximal cliques of a chordal graph every such tree has the
 //     running-intersection property. Disconnected parts are joined by empty separators.
@@ -78,10 +82,11 @@ namespace dabench {
 struct JtOptions {
   double threshold = 0.0;          // τ: associations whose weight (see threshold_on) is below τ are removed
   int threshold_on = 0;            // 0: ψ (eq 11), 1: g = ψ λ_fa (1−Pd)/Pd, 2: ψ/(1+Σψ), 3: (1−Pd) ψ
-  // Budget for one cluster's tables (cliques + separators + scratch, MiB). The default, 2.5 GiB =
-  // 3.4e8 doubles, takes every clique tree within libDAI JTree's maxstates = 1.5e8 clique
-  // states (our separators and scratch add at most about as much again as the cliques).
-  std::int64_t memory_mb = 2560;
+  // Budget for one cluster's tables (cliques + separators + scratch, MiB). The default, 3.5 GiB =
+  // 4.7e8 doubles, takes every clique tree within libDAI JTree's bound of 1.5e8 clique states:
+  // each separator is smaller than its child clique and the scratch than the separators, so the
+  // tables total at most 3× the clique states.
+  std::int64_t memory_mb = 3584;
 
   void bind(ParamList& params) {
     params.add("threshold", threshold, "weights below this are removed before the junction tree is built");
@@ -101,10 +106,18 @@ class JunctionTreeBuilder {
   // Starts a graph with `vars` variables and no edges; domain[v] >= 1.
   void reset(int vars, const int* domain);
   void add_edge(int a, int b);  // a != b; repeated edges are fine
-  // Triangulates by min-fill (ties: min-weight, then lowest index) and builds the clique tree.
-  // Returns false, stopping at once, if an elimination clique would have more than
-  // `max_clique_entries` table entries.
-  bool build(std::uint64_t max_clique_entries);
+  // Triangulates (step 1 above) and builds the clique tree. Returns false if no order keeps the
+  // maximal cliques within `max_total_entries` table entries in all (an order is abandoned as
+  // soon as one of its cliques alone exceeds that).
+  bool build(std::uint64_t max_total_entries);
+
+  // Greedy elimination rules (step 1 above).
+  enum class EliminationRule { min_fill, min_fill_by_index, min_weight, weighted_min_fill };
+  // The min-fill order is kept without trying the others when its cliques hold at most this
+  // many entries (the tables then cost microseconds; small problems keep one fixed order).
+  static constexpr std::uint64_t kTryOtherRulesAbove = std::uint64_t{1} << 16;
+  EliminationRule rule() const { return rule_; }                              // of the last build
+  std::uint64_t total_clique_entries() const { return total_clique_entries_; }  // Σ maximal cliques
 
   int vars() const { return vars_; }
   // Cliques are numbered so that parent(c) < c; clique 0 is the root (parent -1).
@@ -126,6 +139,14 @@ class JunctionTreeBuilder {
   std::vector<std::uint64_t> alive_;
   std::vector<int> elimination_order_;
   std::vector<int> maximal_;                   // indices (in elimination order) of maximal cliques
+  // The order being tried; swapped into the three above when it is the best so far.
+  std::vector<std::uint64_t> candidate_cliques_;
+  std::vector<int> candidate_order_;
+  std::vector<int> candidate_maximal_;
+  EliminationRule rule_ = EliminationRule::min_fill;
+  std::uint64_t total_clique_entries_ = 0;
+  bool eliminate(EliminationRule rule, std::uint64_t max_clique_entries);  // into candidate_*
+  std::uint64_t find_maximal_cliques();        // candidate_maximal_; returns their total entries
   std::vector<int> key_;                       // Prim: best separator size to the tree, or -1
   std::vector<int> key_parent_;
   std::vector<int> new_index_;                 // maximal clique → position in the tree order

@@ -6,7 +6,7 @@
 //   median_us  median over the pool's SOLVED problems of the per-problem time (each solved
 //              `repeats` times in a row to amortise the clock);
 //   skipped    fraction of the pool refused by the memory budget (skipped:memory; default
-//              2.5 GiB of tables per cluster), measured on the same pass;
+//              3.5 GiB of tables per cluster), measured on the same pass;
 //   states     median over the solved problems of the clique states (libDAI's maxstates measure).
 // The mean time per iteration (Google Benchmark's own column) includes refused problems, which
 // cost microseconds (the refusal happens during elimination, before any table exists).
