@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -62,30 +63,54 @@ void pair_messages(int edges, double gamma, const int* __restrict column, const 
   }
 }
 
-// y_ij of one row (eq 163), with the same leave-one-out rule; tracks the extreme ratios y_new/y_old.
+// The convergence measure d = max |log(y_new / y_old)| of one iteration, compared with the
+// tolerance. While no ratio has left [e^−tol, e^tol] (widened by 1e-12 against rounding) the
+// extreme ratios are tracked exactly; once one has, the iteration cannot have converged and the
+// remaining pairs are only compared by multiplication, so early iterations need no division per
+// pair, and the stopping decision is exactly that of the plain max-ratio test.
+class ChangeTracker {
+ public:
+  explicit ChangeTracker(double tolerance) : bound_(std::exp(tolerance) * (1.0 + 1e-12)) {}
+  void add(double value, double old) {
+    if (moved_) return;
+    if (value > bound_ * old || old > bound_ * value) {
+      moved_ = true;
+      return;
+    }
+    const double ratio = value / old;
+    largest_ = std::max(largest_, ratio);
+    smallest_ = std::min(smallest_, ratio);
+  }
+  double change() const {  // d, or +inf once some ratio is certainly beyond the tolerance
+    return moved_ ? std::numeric_limits<double>::infinity() : std::log(std::max(largest_, 1.0 / smallest_));
+  }
+
+ private:
+  double bound_;
+  bool moved_ = false;
+  double largest_ = 1.0, smallest_ = 1.0;
+};
+
+// y_ij of one row (eq 163), with the same leave-one-out rule.
 template <Exponent kind>
 void row_messages(int begin, int end, double gamma, double factor, double sum, int top, double rest,
                   const double* __restrict weight, const double* __restrict from, double* __restrict to,
-                  double& largest, double& smallest) {
+                  ChangeTracker& change) {
   for (int e = begin; e < end; ++e) {
     const double excluded = e == top ? rest : sum - weight[e] * from[e];
     const double value = factor * excluded_power<kind>(excluded, gamma);
-    const double ratio = value / to[e];
-    largest = std::max(largest, ratio);
-    smallest = std::min(smallest, ratio);
+    change.add(value, to[e]);
     to[e] = value;
   }
 }
 
 // Adds `term` (of pair `e`) to a sum kept as its largest term plus the rest (see pair_messages).
+// Branch-free: which term is larger is data-dependent and would be mispredicted.
 inline void add_term(double term, int e, double& top_value, int& top, double& rest) {
-  if (term > top_value) {
-    rest += top_value;
-    top_value = term;
-    top = e;
-  } else {
-    rest += term;
-  }
+  const bool larger = term > top_value;
+  rest += larger ? top_value : term;
+  top_value = larger ? term : top_value;
+  top = larger ? e : top;
 }
 
 Exponent exponent_of(double gamma) {
@@ -207,7 +232,7 @@ void FractionalBpKernel::column_step(const FractionalBpOptions& options) {
 double FractionalBpKernel::row_step(const FractionalBpOptions& options) {
   const double gamma = options.gamma;
   const Exponent kind = exponent_of(gamma);
-  double largest = 1.0, smallest = 1.0;  // extreme ratios y_new / y_old
+  ChangeTracker change(options.tolerance);
   for (int i = 0; i < targets_; ++i) {
     const int begin = row_begin_[i], end = row_begin_[i + 1];
     double top_value = 0.0, rest = miss_[i] * x_miss_[i];  // the miss term is never excluded
@@ -216,23 +241,21 @@ double FractionalBpKernel::row_step(const FractionalBpOptions& options) {
     const double sum = rest + top_value;
     row_sum_[i] = sum;
     const double y_miss = 1.0 / sum;  // eq (164)
-    const double ratio = y_miss / y_miss_[i];
-    largest = std::max(largest, ratio);
-    smallest = std::min(smallest, ratio);
+    change.add(y_miss, y_miss_[i]);
     y_miss_[i] = y_miss;
     const double factor = shared_factor(e_kappa_, sum, gamma);
     switch (kind) {  // eq (163)
       case Exponent::one:
         row_messages<Exponent::one>(begin, end, gamma, factor, sum, top, rest, edge_weight_.data(), x_.data(), y_.data(),
-                                    largest, smallest);
+                                    change);
         break;
       case Exponent::zero:
         row_messages<Exponent::zero>(begin, end, gamma, factor, sum, top, rest, edge_weight_.data(), x_.data(), y_.data(),
-                                     largest, smallest);
+                                     change);
         break;
       case Exponent::general:
         row_messages<Exponent::general>(begin, end, gamma, factor, sum, top, rest, edge_weight_.data(), x_.data(), y_.data(),
-                                        largest, smallest);
+                                        change);
         break;
     }
   }
@@ -240,13 +263,11 @@ double FractionalBpKernel::row_step(const FractionalBpOptions& options) {
     const double power = 1.0 / options.beta - 1.0;
     for (int j = 0; j < measurements_; ++j) {
       const double value = std::pow(x_clutter_[j], power);
-      const double ratio = value / y_clutter_[j];
-      largest = std::max(largest, ratio);
-      smallest = std::min(smallest, ratio);
+      change.add(value, y_clutter_[j]);
       y_clutter_[j] = value;
     }
   }
-  return std::log(std::max(largest, 1.0 / smallest));
+  return change.change();
 }
 
 void FractionalBpKernel::write_outputs() {

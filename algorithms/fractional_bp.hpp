@@ -93,7 +93,7 @@ class FractionalBpKernel {
  private:
   void build(WeightMatrix w, WeightVector miss_weight, WeightVector clutter_weight);
   void column_step(const FractionalBpOptions& options);  // x = r(y), eqs (160)-(162)
-  double row_step(const FractionalBpOptions& options);   // y = s(x), eqs (163)-(165); returns d
+  double row_step(const FractionalBpOptions& options);   // y = s(x), eqs (163)-(165); returns d (or +inf, surely > tolerance)
   void write_outputs();
   double objective(const FractionalBpOptions& options) const;
 
