@@ -179,6 +179,7 @@ class JunctionTree final : public SingleScanSolver {
   double log_partition() const { return log_partition_; }
   std::uint64_t largest_table_entries() const { return largest_table_entries_; }
   std::uint64_t largest_clique_states() const { return largest_clique_states_; }
+  const JunctionTreeBuilder& builder() const { return builder_; }  // of the last cluster built
 
  private:
   enum class Weights { none, product, log_sum };
