@@ -53,7 +53,7 @@ inline double shared_factor(double e_kappa, double sum, double gamma) {
 // so the subtraction loses at most one bit. A plain C_j − w_ij y_ij would return 0 or garbage
 // once one term exceeds the rest by ~1e16.
 template <Exponent kind>
-void pair_messages(int edges, double gamma, const int* __restrict column, const double* __restrict weight,
+__attribute__((target_clones("avx2", "default"))) void pair_messages(int edges, double gamma, const int* __restrict column, const double* __restrict weight,
                    const double* __restrict from, const double* __restrict sum, const double* __restrict factor,
                    const int* __restrict top, const double* __restrict rest, double* __restrict to) {
   for (int e = 0; e < edges; ++e) {
