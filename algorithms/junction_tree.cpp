@@ -43,6 +43,7 @@ inline void for_each_bit(const std::uint64_t* bits, int words, F&& f) {
 
 inline void set_bit(std::uint64_t* bits, int b) { bits[b >> 6] |= std::uint64_t{1} << (b & 63); }
 inline void clear_bit(std::uint64_t* bits, int b) { bits[b >> 6] &= ~(std::uint64_t{1} << (b & 63)); }
+inline bool test_bit(const std::uint64_t* bits, int b) { return (bits[b >> 6] >> (b & 63)) & 1; }
 
 // Below this a clique table entry risks losing precision to subnormals: recompute in logs.
 constexpr double kTiny = 1e-250;
@@ -93,12 +94,9 @@ bool JunctionTreeBuilder::eliminate(EliminationRule rule, std::uint64_t max_cliq
         twice_fill += missing - 1;  // u itself is in nb but not in nu
         if (rule == EliminationRule::weighted_min_fill) {
           std::uint64_t partners = 0;  // Σ domain over the neighbours u is not yet joined to
-          for (int w = 0; w < words; ++w) {
-            for_each_bit(&nb[w], 1, [&](int bit) {
-              const int x = w * 64 + bit;
-              if (x != u && !(nu[x >> 6] >> (x & 63) & 1)) partners += static_cast<std::uint64_t>(domain_[x]);
-            });
-          }
+          for_each_bit(nb, words, [&](int x) {
+            if (x != u && !test_bit(nu, x)) partners += static_cast<std::uint64_t>(domain_[x]);
+          });
           twice_weighted_fill =
               saturating_add(twice_weighted_fill, saturating_multiply(partners, static_cast<std::uint64_t>(domain_[u])));
         }

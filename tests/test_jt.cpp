@@ -125,6 +125,26 @@ std::string check_junction_tree(const JunctionTreeBuilder& tree, int vars, const
   return "";
 }
 
+// A random graph on `vars` variables: domains uniform in [min_domain, max_domain], each edge
+// present with probability `density` (domains drawn first, then edges in (a, b) order).
+std::pair<std::vector<int>, std::vector<std::pair<int, int>>> random_graph(RandomStream& rng, int vars, double density,
+                                                                         int min_domain, int max_domain) {
+  std::vector<int> domain(vars);
+  for (int& d : domain) d = uniform_int(rng, min_domain, max_domain);
+  std::vector<std::pair<int, int>> edges;
+  for (int a = 0; a < vars; ++a) {
+    for (int b = a + 1; b < vars; ++b) {
+      if (rng.bernoulli(density)) edges.emplace_back(a, b);
+    }
+  }
+  return {domain, edges};
+}
+
+void load_graph(JunctionTreeBuilder& builder, const std::vector<int>& domain, const std::vector<std::pair<int, int>>& edges) {
+  builder.reset(static_cast<int>(domain.size()), domain.data());
+  for (const auto& [a, b] : edges) builder.add_edge(a, b);
+}
+
 // libDAI JTree's default triangulation, written out independently: eliminate the variable
 // adding the fewest fill edges, ties to the lowest index; returns the total table entries of
 // the maximal elimination cliques.
@@ -376,16 +396,8 @@ TEST_CASE("jt: clique trees of random graphs have the running-intersection prope
   for (int trial = 0; trial < 300; ++trial) {
     const int vars = uniform_int(rng, 1, trial < 250 ? 14 : 80);
     const double density = rng.uniform(0.0, trial % 4 == 0 ? 0.9 : 0.3);
-    std::vector<int> domain(vars);
-    for (int& d : domain) d = uniform_int(rng, 1, 4);
-    std::vector<std::pair<int, int>> edges;
-    for (int a = 0; a < vars; ++a) {
-      for (int b = a + 1; b < vars; ++b) {
-        if (rng.bernoulli(density)) edges.emplace_back(a, b);
-      }
-    }
-    builder.reset(vars, domain.data());
-    for (const auto& [a, b] : edges) builder.add_edge(a, b);
+    const auto [domain, edges] = random_graph(rng, vars, density, 1, 4);
+    load_graph(builder, domain, edges);
     REQUIRE(builder.build(std::numeric_limits<std::uint64_t>::max()));
     INFO("trial " << trial << " vars " << vars << " edges " << edges.size());
     CHECK(check_junction_tree(builder, vars, edges, domain).empty());
@@ -402,16 +414,8 @@ TEST_CASE("jt: large clique trees never need more entries than libDAI's min-fill
   for (int trial = 0; trial < 200; ++trial) {
     const int vars = uniform_int(rng, 8, 18);
     const double density = rng.uniform(0.15, 0.5);
-    std::vector<int> domain(vars);
-    for (int& d : domain) d = uniform_int(rng, 2, 9);
-    std::vector<std::pair<int, int>> edges;
-    for (int a = 0; a < vars; ++a) {
-      for (int b = a + 1; b < vars; ++b) {
-        if (rng.bernoulli(density)) edges.emplace_back(a, b);
-      }
-    }
-    builder.reset(vars, domain.data());
-    for (const auto& [a, b] : edges) builder.add_edge(a, b);
+    const auto [domain, edges] = random_graph(rng, vars, density, 2, 9);
+    load_graph(builder, domain, edges);
     REQUIRE(builder.build(std::numeric_limits<std::uint64_t>::max()));
     const std::uint64_t libdai = libdai_min_fill_total(vars, edges, domain);
     INFO("trial " << trial << " ours " << builder.total_clique_entries() << " libDAI rule " << libdai);
