@@ -14,28 +14,35 @@ constexpr double kWeightFloor = -600.0;  // log of the smallest relative weight 
 constexpr double kShiftLimit = 100.0;    // largest |log| of a row maximum or clutter weight given to it
 const double kLogProbabilityFloor = std::log(DBL_MIN);
 
-// log Σ_r exp x(r, c) per column (−∞ for a column that is all −∞).
-Eigen::RowVectorXd column_log_sum_exp(const RowMatrix& x) {
-  Eigen::RowVectorXd top = x.colwise().maxCoeff();
-  const Eigen::RowVectorXd shift = (top.array() == kMinusInfinity).select(0.0, top);
-  Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(x.cols());
-  for (Eigen::Index r = 0; r < x.rows(); ++r) sum.array() += (x.row(r) - shift).array().exp();
-  return shift.array() + sum.array().log();
+// log Σ_r exp x(r, c) per column into `out` (−∞ for a column that is all −∞). `work` holds the
+// exponentials: one vectorised exp over the whole matrix, no allocation once sized.
+void column_log_sum_exp(const RowMatrix& x, RowMatrix& work, Eigen::RowVectorXd& shift, Eigen::Ref<Eigen::RowVectorXd> out) {
+  shift = x.colwise().maxCoeff();
+  shift = (shift.array() == kMinusInfinity).select(0.0, shift);
+  work.noalias() = x.rowwise() - shift;
+  work.array() = work.array().exp();  // a plain matrix: Eigen's packet exp (a broadcast would go scalar)
+  out = shift.array() + work.colwise().sum().array().log();
 }
 
-// log Σ_c exp x(r, c) per row (−∞ for a row that is all −∞). One exp over the whole matrix
-// (vectorised) rather than one short Eigen expression per row.
-Vector row_log_sum_exp(const RowMatrix& x) {
-  const Vector top = x.rowwise().maxCoeff();
-  const Vector shift = (top.array() == kMinusInfinity).select(0.0, top);
-  const Vector sum = (x.colwise() - shift).array().exp().rowwise().sum();
-  return shift.array() + sum.array().log();
+// log Σ_c exp x(r, c) per row into `out` (−∞ for a row that is all −∞).
+void row_log_sum_exp(const RowMatrix& x, RowMatrix& work, Vector& shift, Vector& out) {
+  shift = x.rowwise().maxCoeff();
+  shift = (shift.array() == kMinusInfinity).select(0.0, shift);
+  work.noalias() = x.colwise() - shift;
+  work.array() = work.array().exp();
+  out = shift.array() + work.rowwise().sum().array().log();
 }
 
 // log of a normalised distribution from unnormalised log weights.
 Vector log_normalize(const Vector& x) {
   const double top = x.maxCoeff();
   return x.array() - (top + std::log((x.array() - top).exp().sum()));
+}
+
+// The same, in place.
+void normalize_log(Vector& x) {
+  const double top = x.maxCoeff();
+  x.array() -= top + std::log((x.array() - top).exp().sum());
 }
 
 // λ = φ − κ log q where φ is finite; 0 where the entry is a structural zero (φ = −∞). Returns
@@ -145,9 +152,9 @@ double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettin
   scaled_.resize(n);
   log_column_.resize(n, m + 1);
   for (int i = 0; i < n; ++i) {
-    const Vector phi_a = log_prior_[i] - (lambda_sum_[i] - scan.lambda1_a[i]);  // (76)
-    scaled_[i] = ((scan.log_factor[i] - scan.lambda2_t[i]).colwise() + phi_a) / k1;  // (77), /K1
-    log_column_.row(i) = column_log_sum_exp(scaled_[i]);
+    phi_a_ = log_prior_[i] - (lambda_sum_[i] - scan.lambda1_a[i]);  // (76)
+    scaled_[i] = ((scan.log_factor[i] - scan.lambda2_t[i]).colwise() + phi_a_) / k1;  // (77), /K1
+    column_log_sum_exp(scaled_[i], exp_work_, column_shift_, log_column_.row(i));
   }
   // The single-scan problem (79): w^{i,j} = exp φ̃(j), w^{0,j} = 1, rescaled by the duals of
   // this scan's previous kernel solution (row i by e^{r_i}, column j by e^{s_j} with w^{0,j} by
@@ -208,13 +215,12 @@ double ConvexVariationalPdca::block_one(int t, const Kappas& k, const PdcaSettin
     }
     RowMatrix& log_q = scaled_[i];
     log_q.rowwise() += offset;
-    const Vector log_q_a = row_log_sum_exp(log_q);  // (82)
-    const Vector phi_a = log_prior_[i] - (lambda_sum_[i] - scan.lambda1_a[i]);
-    const Vector previous = scan.lambda1_a[i];
-    change = std::max(change, update_dual(scan.lambda1_a[i], phi_a, log_q_a, k.f_a));  // (80)
-    lambda_sum_[i] += scan.lambda1_a[i] - previous;
-    const RowMatrix phi_t = scan.log_factor[i] - scan.lambda2_t[i];
-    change = std::max(change, update_dual(scan.lambda1_t[i], phi_t, log_q, k.f_t));  // (81)
+    row_log_sum_exp(log_q, exp_work_, row_shift_, log_q_a_);  // (82)
+    phi_a_ = log_prior_[i] - (lambda_sum_[i] - scan.lambda1_a[i]);
+    lambda_sum_[i] -= scan.lambda1_a[i];
+    change = std::max(change, update_dual(scan.lambda1_a[i], phi_a_, log_q_a_, k.f_a));  // (80)
+    lambda_sum_[i] += scan.lambda1_a[i];
+    change = std::max(change, update_dual(scan.lambda1_t[i], scan.log_factor[i] - scan.lambda2_t[i], log_q, k.f_t));  // (81)
   }
   return change;
 }
@@ -226,17 +232,17 @@ double ConvexVariationalPdca::block_two(int t, const Kappas& k) {
   const double k_total = k.f_a + k.f_t + k.two_a + k.two_t;
   double change = 0.0;
   for (int i = 0; i < n; ++i) {
-    const Vector phi_a = log_prior_[i] - (lambda_sum_[i] - scan.lambda2_a[i]);  // (86)
-    const RowMatrix phi_t = scan.log_factor[i] - scan.lambda1_t[i];             // (87)
-    const Vector phi_tilde = k2 * row_log_sum_exp(phi_t / k2);                  // (88)
-    const Vector log_q_a = log_normalize((phi_a + phi_tilde) / k_total);         // (84)
-    RowMatrix log_q = (phi_t.colwise() - phi_tilde) / k2;                       // (85)
-    log_q.colwise() += log_q_a;
-    const Vector previous = scan.lambda2_a[i];
-    change = std::max(change, update_dual(scan.lambda2_a[i], phi_a, log_q_a, k.f_a));  // (89)
-    lambda_sum_[i] += scan.lambda2_a[i] - previous;
-    change = std::max(change, update_dual(scan.lambda2_t[i], phi_t, log_q, k.f_t));  // (90)
-    log_belief_[i] = log_q_a;
+    phi_a_ = log_prior_[i] - (lambda_sum_[i] - scan.lambda2_a[i]);  // (86)
+    phi_t_ = scan.log_factor[i] - scan.lambda1_t[i];                // (87)
+    log_q_ = phi_t_ / k2;
+    row_log_sum_exp(log_q_, exp_work_, row_shift_, phi_tilde_);      // (88): φ̃/K2
+    log_belief_[i] = (phi_a_ + k2 * phi_tilde_) / k_total;            // (84)
+    normalize_log(log_belief_[i]);
+    log_q_.colwise() += log_belief_[i] - phi_tilde_;                  // (85)
+    lambda_sum_[i] -= scan.lambda2_a[i];
+    change = std::max(change, update_dual(scan.lambda2_a[i], phi_a_, log_belief_[i], k.f_a));  // (89)
+    lambda_sum_[i] += scan.lambda2_a[i];
+    change = std::max(change, update_dual(scan.lambda2_t[i], phi_t_, log_q_, k.f_t));  // (90)
   }
   return change;
 }

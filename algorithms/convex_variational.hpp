@@ -148,6 +148,12 @@ class ConvexVariationalPdca {
   bool numerical_failure_ = false;  // Algorithm 1 returned non-finite marginals
   RowMatrix log_column_;            // φ̃_t'^i(a) of (78), n × (m+1)
   std::vector<RowMatrix> scaled_;   // per track: (φ + φ_t')/K1, then log q_t'(A, a)
+  // Scratch of the blocks (sized once, reused: no allocation in the sweeps).
+  RowMatrix exp_work_;              // exponentials of a log-sum-exp
+  RowMatrix phi_t_;                 // φ_t'(A, a) of block (t',2)
+  RowMatrix log_q_;                 // log q_t'(A, a) of block (t',2)
+  Vector phi_a_, log_q_a_, phi_tilde_, row_shift_;
+  Eigen::RowVectorXd column_shift_;
 };
 
 }  // namespace dabench
