@@ -14,23 +14,17 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// log(e^{slack} + Σ_{k≠skip} e^{values_k}) about its largest term; −∞ if every term is 0.
-template <class Values>
-double log_sum_without(const Values& values, Eigen::Index skip, double slack) {
-  double largest = slack;
-  for (Eigen::Index k = 0; k < values.size(); ++k) {
-    if (k != skip) largest = std::max(largest, values[k]);
-  }
-  if (largest == -kInfinity) return -kInfinity;
-  double sum = std::exp(slack - largest);
-  for (Eigen::Index k = 0; k < values.size(); ++k) {
-    if (k != skip) sum += std::exp(values[k] - largest);
-  }
-  return largest + std::log(sum);
-}
-
 // 1 / (1 + e^{−log_odds}): a binary variable's belief from its log odds.
 double belief_of(double log_odds) { return 1.0 / (1.0 + std::exp(-log_odds)); }
+
+// log Σ_k e^{values_k} about its largest term; −∞ for no terms.
+double log_sum(const double* values, int count) {
+  if (count == 0) return -kInfinity;
+  const double largest = *std::max_element(values, values + count);
+  double sum = 0.0;
+  for (int k = 0; k < count; ++k) sum += std::exp(values[k] - largest);
+  return largest + std::log(sum);
+}
 
 }  // namespace
 
@@ -59,67 +53,110 @@ std::string MultipathAssociationOptions::validate() const {
   return {};
 }
 
-double MultipathAssociationBp::row_step(const MultipathEvidence& evidence) {
-  double change = 0.0;
-  for (Eigen::Index p = 0; p < evidence.pseudo_targets(); ++p) {
-    auto out = outgoing_.row(p);
-    out = evidence.detection.row(p) + column_message_.row(p) + page_message_.row(p);  // ν^R (51)
-    // Σ e^ν about the largest term (the miss term included); gated ν = −∞ add nothing.
-    Eigen::Index top = 0;
-    double largest = out.maxCoeff(&top);
-    if (evidence.miss[p] >= largest) {
-      largest = evidence.miss[p];
-      top = -1;
+void MultipathAssociationBp::build_graph(const MultipathEvidence& evidence, bool page_factor) {
+  const int rows = evidence.pseudo_targets(), columns = evidence.measurements();
+  pair_row_.clear();
+  pair_column_.clear();
+  pair_chi_.clear();
+  rows_.start.assign(1, 0);
+  rows_.pairs.clear();
+  std::vector<int>& column_start = columns_.start;
+  column_start.assign(columns + 1, 0);
+  for (int p = 0; p < rows; ++p) {
+    for (int j = 0; j < columns; ++j) {
+      const double chi = evidence.detection(p, j);
+      if (chi == -kInfinity) continue;  // outside the gate
+      rows_.pairs.push_back(static_cast<int>(pair_chi_.size()));
+      pair_row_.push_back(p);
+      pair_column_.push_back(j);
+      pair_chi_.push_back(chi);
+      ++column_start[j + 1];
     }
-    auto terms = terms_.row(p);
-    terms = (out.array() - largest).exp();
-    const double total = terms.sum() + std::exp(evidence.miss[p] - largest);
-    auto updated = updated_.row(p);
-    updated = -(largest + (total - terms.array()).log());  // (48), the largest term left in
-    if (top >= 0) updated[top] = -log_sum_without(out, top, evidence.miss[p]);
-    change = std::max(change, (updated - row_message_.row(p)).cwiseAbs().maxCoeff());
+    rows_.start.push_back(static_cast<int>(rows_.pairs.size()));
   }
-  row_message_.swap(updated_);
-  return change;
-}
-double MultipathAssociationBp::column_step(const MultipathEvidence& evidence) {
-  const Eigen::Index rows = evidence.pseudo_targets(), columns = evidence.measurements();
-  outgoing_ = evidence.detection + row_message_ + page_message_;  // ν^C (52)
-  // Per measurement: Σ e^ν about the largest term (the clutter term included).
-  largest_ = evidence.clutter.transpose();
-  top_.setConstant(columns, -1);
-  for (Eigen::Index p = 0; p < rows; ++p) {
-    for (Eigen::Index j = 0; j < columns; ++j) {
-      if (outgoing_(p, j) > largest_[j]) {
-        largest_[j] = outgoing_(p, j);
-        top_[j] = static_cast<int>(p);
+  const int pairs = static_cast<int>(pair_chi_.size());
+  // Columns by counting sort: within a column the pairs stay in row order.
+  for (int j = 0; j < columns; ++j) column_start[j + 1] += column_start[j];
+  columns_.pairs.resize(pairs);
+  next_slot_.assign(column_start.begin(), column_start.end() - 1);
+  for (int e = 0; e < pairs; ++e) columns_.pairs[next_slot_[pair_column_[e]]++] = e;
+  // Pages: the pairs of one column that belong to the same target, when there are two or more
+  // (a page factor over one variable sends the constant message log 1 = 0).
+  pages_.start.assign(1, 0);
+  pages_.pairs.clear();
+  if (page_factor && evidence.paths > 1) {
+    for (int j = 0; j < columns; ++j) {
+      for (int k = column_start[j]; k < column_start[j + 1];) {
+        const int target = pair_row_[columns_.pairs[k]] / evidence.paths;
+        int end = k + 1;
+        while (end < column_start[j + 1] && pair_row_[columns_.pairs[end]] / evidence.paths == target) ++end;
+        if (end - k >= 2) {
+          pages_.pairs.insert(pages_.pairs.end(), columns_.pairs.begin() + k, columns_.pairs.begin() + end);
+          pages_.start.push_back(static_cast<int>(pages_.pairs.size()));
+        }
+        k = end;
       }
     }
   }
-  terms_ = (outgoing_.rowwise() - largest_).array().exp();
-  total_ = terms_.colwise().sum() + (evidence.clutter.transpose() - largest_).array().exp().matrix();
-  updated_ = -(((-terms_).rowwise() + total_).array().log().matrix().rowwise() + largest_);  // (49)
-  for (Eigen::Index j = 0; j < columns; ++j) {
-    if (top_[j] >= 0) updated_(top_[j], j) = -log_sum_without(outgoing_.col(j), top_[j], evidence.clutter[j]);
+  row_message_.assign(pairs, 0.0);  // (47): messages start from the evidence alone
+  column_message_.assign(pairs, 0.0);
+  page_message_.assign(pairs, 0.0);
+  int largest_factor = 0;
+  for (const FactorIndex* index : {&rows_, &columns_, &pages_}) {
+    for (std::size_t f = 0; f + 1 < index->start.size(); ++f) {
+      largest_factor = std::max(largest_factor, index->start[f + 1] - index->start[f]);
+    }
   }
-  const double change = (updated_ - column_message_).cwiseAbs().maxCoeff();
-  column_message_.swap(updated_);
-  return change;
+  values_.resize(largest_factor);
+  terms_.resize(largest_factor);
 }
 
-double MultipathAssociationBp::page_step(const MultipathEvidence& evidence) {
-  const int paths = evidence.paths;
-  outgoing_ = evidence.detection + row_message_ + column_message_;  // ν^P (53)
+// Eqs (48)-(50) for every factor of one kind. A factor is "exactly one of its variables or its
+// slack" (rows: the miss, columns: the clutter; pages: "at most one", slack log 1 = 0); the log
+// ratio to variable k is −log(e^{slack} + Σ_{k'≠k} e^{ν_k'}), with ν_k' the variable's incoming
+// log ratio from its other factors. Returns the largest change of a message.
+double MultipathAssociationBp::update(Kind kind, const FactorIndex& index, const double* slack) {
+  std::vector<double>& own = kind == Kind::row ? row_message_ : kind == Kind::column ? column_message_ : page_message_;
   double change = 0.0;
-  for (int first = 0; first < evidence.pseudo_targets(); first += paths) {  // one target's paths
-    for (Eigen::Index j = 0; j < evidence.measurements(); ++j) {
-      const auto group = outgoing_.col(j).segment(first, paths);
-      for (int tau = 0; tau < paths; ++tau) {
-        // (50) as "at most one": the slack is the all-zero configuration, log 1 = 0.
-        const double updated = -log_sum_without(group, tau, 0.0);
-        change = std::max(change, std::abs(updated - page_message_(first + tau, j)));
-        page_message_(first + tau, j) = updated;
+  for (std::size_t f = 0; f + 1 < index.start.size(); ++f) {
+    const int* pairs = index.pairs.data() + index.start[f];
+    const int count = index.start[f + 1] - index.start[f];
+    if (count == 0) continue;
+    const double slack_value = slack == nullptr ? 0.0 : slack[f];
+    double largest = slack_value;
+    int top = -1;
+    for (int k = 0; k < count; ++k) {
+      const int e = pairs[k];
+      values_[k] = pair_chi_[e] + row_message_[e] + column_message_[e] + page_message_[e] - own[e];  // ν (51)-(53)
+      if (values_[k] > largest) {
+        largest = values_[k];
+        top = k;
       }
+    }
+    double total = std::exp(slack_value - largest);
+    for (int k = 0; k < count; ++k) {
+      terms_[k] = std::exp(values_[k] - largest);
+      total += terms_[k];
+    }
+    // Leaving out a term other than the largest keeps the largest's 1 in the sum: no cancellation.
+    // The sum without the largest term is formed afresh about the second largest.
+    double without_top = 0.0;
+    if (top >= 0) {
+      double second = slack_value;
+      for (int k = 0; k < count; ++k) {
+        if (k != top) second = std::max(second, values_[k]);
+      }
+      double sum = std::exp(slack_value - second);
+      for (int k = 0; k < count; ++k) {
+        if (k != top) sum += std::exp(values_[k] - second);
+      }
+      without_top = second + std::log(sum);
+    }
+    for (int k = 0; k < count; ++k) {
+      const double updated = -(k == top ? without_top : largest + std::log(total - terms_[k]));
+      double& message = own[pairs[k]];
+      change = std::max(change, std::abs(updated - message));
+      message = updated;
     }
   }
   return change;
@@ -129,40 +166,38 @@ void MultipathAssociationBp::solve(const MultipathEvidence& evidence, const Mult
                                    MultipathAssociation& result) {
   if (const std::string error = evidence.validate(); !error.empty()) throw InputError(error);
   if (const std::string error = options.validate(); !error.empty()) throw InputError("multipath association: " + error);
-  const int rows = evidence.pseudo_targets(), columns = evidence.measurements();
-  row_message_.setZero(rows, columns);  // (47): messages start from the evidence alone
-  column_message_.setZero(rows, columns);
-  page_message_.setZero(rows, columns);
-  outgoing_.resize(rows, columns);
-  terms_.resize(rows, columns);
-  updated_.resize(rows, columns);
-  result.converged = rows == 0 || columns == 0;  // nothing to associate
+  build_graph(evidence, options.page_factor);
+  const int pairs = static_cast<int>(pair_chi_.size());
   result.iterations = 0;
+  result.converged = pairs == 0;  // nothing to associate
   while (!result.converged && result.iterations < options.max_iterations) {
     ++result.iterations;
-    double change = row_step(evidence);
-    change = std::max(change, column_step(evidence));
-    if (options.page_factor && evidence.paths > 1) change = std::max(change, page_step(evidence));
+    double change = update(Kind::row, rows_, evidence.miss.data());
+    change = std::max(change, update(Kind::column, columns_, evidence.clutter.data()));
+    change = std::max(change, update(Kind::page, pages_, nullptr));
     result.converged = change < options.tolerance;
   }
-  // Beliefs (54)-(55); gated-out variables are exactly 0.
-  result.detection.resize(rows, columns);
-  for (int p = 0; p < rows; ++p) {
-    for (int j = 0; j < columns; ++j) {
-      const double chi = evidence.detection(p, j);
-      result.detection(p, j) =
-          chi == -kInfinity ? 0.0 : belief_of(chi + row_message_(p, j) + column_message_(p, j) + page_message_(p, j));
+  // Beliefs (54)-(55); pairs outside the gate are exactly 0.
+  result.detection.setZero(evidence.pseudo_targets(), evidence.measurements());
+  for (int e = 0; e < pairs; ++e) {
+    result.detection(pair_row_[e], pair_column_[e]) =
+        belief_of(pair_chi_[e] + row_message_[e] + column_message_[e] + page_message_[e]);
+  }
+  // A slack's belief from its factor: log odds = slack − log Σ e^ν over the factor's variables.
+  auto slack_belief = [&](const FactorIndex& index, std::size_t f, double slack_value, const std::vector<double>& own) {
+    const int* factor_pairs = index.pairs.data() + index.start[f];
+    const int count = index.start[f + 1] - index.start[f];
+    for (int k = 0; k < count; ++k) {
+      const int e = factor_pairs[k];
+      values_[k] = pair_chi_[e] + row_message_[e] + column_message_[e] + page_message_[e] - own[e];
     }
-  }
-  outgoing_ = evidence.detection + column_message_ + page_message_;  // ν^R
-  result.miss.resize(rows);
-  for (int p = 0; p < rows; ++p) {
-    result.miss[p] = belief_of(evidence.miss[p] - log_sum_without(outgoing_.row(p), -1, -kInfinity));
-  }
-  outgoing_ = evidence.detection + row_message_ + page_message_;  // ν^C
-  result.clutter.resize(columns);
-  for (int j = 0; j < columns; ++j) {
-    result.clutter[j] = belief_of(evidence.clutter[j] - log_sum_without(outgoing_.col(j), -1, -kInfinity));
+    return belief_of(slack_value - log_sum(values_.data(), count));
+  };
+  result.miss.resize(evidence.pseudo_targets());
+  for (int p = 0; p < evidence.pseudo_targets(); ++p) result.miss[p] = slack_belief(rows_, p, evidence.miss[p], row_message_);
+  result.clutter.resize(evidence.measurements());
+  for (int j = 0; j < evidence.measurements(); ++j) {
+    result.clutter[j] = slack_belief(columns_, j, evidence.clutter[j], column_message_);
   }
 }
 

@@ -71,7 +71,9 @@ struct MultipathAssociation {
   bool converged = false;
 };
 
-// Loopy BP for Module 3. One object per thread; buffers are reused between scans.
+// Loopy BP for Module 3 over the gated pairs only (χ > −∞): a pair outside the gate has belief
+// 0 and its messages influence nothing. One object per thread; buffers are reused between scans,
+// so a run's scans allocate only when a scan is larger than any before.
 class MultipathAssociationBp {
  public:
   // Throws InputError if the evidence or the options are invalid.
@@ -79,18 +81,22 @@ class MultipathAssociationBp {
              MultipathAssociation& result);
 
  private:
-  double row_step(const MultipathEvidence& evidence);
-  double column_step(const MultipathEvidence& evidence);
-  double page_step(const MultipathEvidence& evidence);
+  // The variables of one factor: pairs[first, last) of a factor index.
+  struct FactorIndex {
+    std::vector<int> start;  // factors + 1 offsets into pairs
+    std::vector<int> pairs;  // pair (edge) numbers
+  };
+  enum class Kind { row, column, page };
 
-  RowMatrix row_message_;     // r^R
-  RowMatrix column_message_;  // r^C
-  RowMatrix page_message_;    // r^P (all 0 without page factors)
-  RowMatrix outgoing_;        // ν to the factors being updated
-  RowMatrix terms_;           // e^{ν − largest} of the sums being formed
-  RowMatrix updated_;         // new messages of the step
-  Eigen::RowVectorXd largest_, total_;  // per column: largest term and Σ e^{ν − largest}
-  Eigen::RowVectorXi top_;              // per column: row of the largest term (−1: clutter)
+  void build_graph(const MultipathEvidence& evidence, bool page_factor);
+  double update(Kind kind, const FactorIndex& index, const double* slack);
+
+  std::vector<int> pair_row_, pair_column_;  // gated pairs in row-major order
+  std::vector<double> pair_chi_;             // χ of each pair
+  FactorIndex rows_, columns_, pages_;       // pages_: one target's paths to one measurement (≥ 2)
+  std::vector<double> row_message_, column_message_, page_message_;  // r^R, r^C, r^P per pair
+  std::vector<double> values_, terms_;       // scratch of one factor: ν, and e^{ν − largest}
+  std::vector<int> next_slot_;               // scratch of the column counting sort
 };
 
 }  // namespace dabench

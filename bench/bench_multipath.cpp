@@ -1,7 +1,9 @@
 // Module 3 of JDT-VB (algorithms/multipath_association): loopy BP for the multipath association
 // marginals of one scan, at OTHR-like sizes (targets × 4 propagation paths × measurements), each
 // pseudo-target gating about `gated` measurements (the rest χ = −∞), χ ~ U(−3, 3) inside the gate.
-// Time = mean per scan over a pool of 64 scans; counter `iterations` = mean BP iterations
+// Time = mean per scan over a pool of 64 scans (measured, loaded 2-core VM, CPU time: 33 µs for
+// 4×20 gated 3, 115 µs for 10×40 gated 3, 0.85 ms for 10×40 gated 10; the dense version took 10×
+// longer); counter `iterations` = mean BP iterations
 // (tolerance 1e-9 on the message log ratios).
 #include <benchmark/benchmark.h>
 
