@@ -30,6 +30,9 @@ class MultipathMeasurementModel {
   virtual Vector measure(int path, const Vector& state) const = 0;           // h^τ(x)
   virtual Eigen::MatrixXd jacobian(int path, const Vector& state) const = 0; // ∂h^τ/∂x, n_y × n_x
   virtual const Eigen::MatrixXd& noise_covariance(int path) const = 0;       // R^τ
+  // A state x with h^τ(x) = y, components h^τ does not depend on set to 0; false if none
+  // exists. Trackers use it to start tracks from single measurements.
+  virtual bool invert(int path, const Vector& measurement, Vector& state) const = 0;
 };
 
 struct TrackingProblem {

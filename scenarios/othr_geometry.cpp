@@ -1,5 +1,6 @@
 #include "scenarios/othr_geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dabench::othr {
@@ -59,6 +60,32 @@ SlantJacobian slant_jacobian(const GroundState& x, const Path& path, double d) {
   return jac;
 }
 
+bool ground_state_from_slant(const SlantMeasurement& y, const Path& path, GroundState& x, double d) {
+  const double r = y[0], sin_z = std::sin(y[2]);
+  const double hr2 = path.receive_height * path.receive_height, ht2 = path.transmit_height * path.transmit_height;
+  double g = r;  // r ≈ g at OTHR ranges (each hop is about g/2 long)
+  for (int step = 0; step < 50; ++step) {
+    const double r_alpha = std::sqrt(g * g / 4.0 + hr2);
+    const double r_beta2 = (g * g - 4.0 * d * r_alpha * sin_z + d * d) / 4.0 + ht2;
+    if (!(r_beta2 > 0.0)) return false;
+    const double r_beta = std::sqrt(r_beta2);
+    const double dra = g / (4.0 * r_alpha);
+    const double slope = dra + (2.0 * g - 4.0 * d * dra * sin_z) / (8.0 * r_beta);
+    const double next = std::clamp(g - (r_alpha + r_beta - r) / slope, 1e-9, 4.0 * r);
+    const bool done = std::abs(next - g) <= 1e-12 * std::max(1.0, g);
+    g = next;
+    if (done) break;
+  }
+  const double r_alpha = std::sqrt(g * g / 4.0 + hr2);
+  const double sin_b = 2.0 * r_alpha * sin_z / g;
+  if (!(std::abs(sin_b) <= 1.0)) return false;
+  const double r_beta = std::sqrt((g * g - 2.0 * d * g * sin_b + d * d) / 4.0 + ht2);
+  if (!(std::abs(r_alpha + r_beta - r) <= 1e-9 * std::max(1.0, r))) return false;
+  const double rate_factor = (g / r_alpha + (g - d * sin_b) / r_beta) / 4.0;
+  x = GroundState(g, y[1] / rate_factor, std::asin(sin_b), 0.0);
+  return true;
+}
+
 OthrMeasurementModel::OthrMeasurementModel(double sigma_range, double sigma_range_rate, double sigma_azimuth)
     : noise_(Eigen::Vector3d(sigma_range * sigma_range, sigma_range_rate * sigma_range_rate,
                              sigma_azimuth * sigma_azimuth)
@@ -66,6 +93,13 @@ OthrMeasurementModel::OthrMeasurementModel(double sigma_range, double sigma_rang
 
 Vector OthrMeasurementModel::measure(int path, const Vector& state) const {
   return slant_measurement(state, kPathTable[path]);
+}
+
+bool OthrMeasurementModel::invert(int path, const Vector& measurement, Vector& state) const {
+  GroundState x;
+  if (measurement.size() != 3 || !ground_state_from_slant(measurement, kPathTable[path], x)) return false;
+  state = x;
+  return true;
 }
 
 Eigen::MatrixXd OthrMeasurementModel::jacobian(int path, const Vector& state) const {

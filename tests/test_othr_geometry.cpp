@@ -126,3 +126,22 @@ TEST_CASE("othr geometry: path symmetries", "[othr_geometry]") {
   CHECK(std::abs(flat[1] - x[1]) < 1e-12);
   CHECK(std::abs(flat[2] - x[2]) < 1e-12);
 }
+
+TEST_CASE("othr geometry: ground_state_from_slant inverts eq 57 on every path", "[othr_geometry]") {
+  for (const auto& path : dabench::othr::kPathTable) {
+    for (double g : {1500.0, 1750.0, 2000.0}) {
+      for (double bearing : {0.43, 0.52, 0.6}) {
+        const dabench::othr::GroundState x(g, -0.15, bearing, 8.7e-5);
+        dabench::othr::GroundState back;
+        REQUIRE(dabench::othr::ground_state_from_slant(dabench::othr::slant_measurement(x, path), path, back));
+        CHECK(back[0] == Approx(g).epsilon(1e-12));
+        CHECK(back[1] == Approx(-0.15).epsilon(1e-10));
+        CHECK(back[2] == Approx(bearing).epsilon(1e-12));
+        CHECK(back[3] == 0.0);  // ϑ̇ does not enter eq (57)
+      }
+    }
+  }
+  // A slant range shorter than the two layer heights allow has no ground state.
+  dabench::othr::GroundState none;
+  CHECK_FALSE(dabench::othr::ground_state_from_slant({150.0, 0.0, 0.5}, dabench::othr::kPathTable[3], none));
+}
