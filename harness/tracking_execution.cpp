@@ -8,7 +8,6 @@
 
 #include "harness/csv.hpp"
 #include "harness/errors.hpp"
-#include "harness/json.hpp"
 #include "harness/registry.hpp"
 
 namespace dabench {
@@ -73,15 +72,10 @@ const TrackingTruth& scoring_truth(const TrackingTruth& truth, int scans, Tracki
 }  // namespace
 
 std::string tracking_metrics_json(const TrackingMetricsOptions& options) {
-  JsonObject json;
-  json.add("min_track_length", static_cast<long long>(options.min_track_length))
-      .add("gate_km", options.gate_km)
-      .add("min_follow_fraction", options.min_follow_fraction)
-      .add("ospa_cutoff_km", options.ospa_cutoff_km)
-      .add("ospa_order", options.ospa_order);
-  std::string text = json.str();
-  while (!text.empty() && text.back() == '\n') text.pop_back();
-  return text;
+  return fmt::format(R"({{"min_track_length": {}, "gate_km": {}, "min_follow_fraction": {}, "ospa_cutoff_km": {}, )"
+                     R"("ospa_order": {}}})",
+                     options.min_track_length, options.gate_km, options.min_follow_fraction, options.ospa_cutoff_km,
+                     options.ospa_order);
 }
 
 TrackingExecution::TrackingExecution(const RunPlan& plan, std::vector<std::unique_ptr<TrackingScenario>> scenarios,

@@ -59,7 +59,7 @@ class TrackingExecution {
   std::vector<std::string> spec_field_;    // CSV-quoted SPEC per tracker
 };
 
-// The metric options as a JSON object, for meta.json.
+// The metric options as a one-line JSON object, for meta.json (key "tracking_metrics").
 std::string tracking_metrics_json(const TrackingMetricsOptions& options);
 
 }  // namespace dabench
