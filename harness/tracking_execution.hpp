@@ -6,8 +6,8 @@
 //  - trials.csv: one per tracker, the metric columns of tracking_metric_columns(): nvt, tpd,
 //    nft, false_tracks, ghost_tracks, broken_targets, ttl_scans, aee_range_km,
 //    aee_bearing_mrad, mospa_km (empty unless the tracker ran), tet_s (seconds), iterations,
-//    converged, free_energy (from the SolveReport; empty unless ok, free_energy also when the
-//    tracker leaves it NaN);
+//    converged, free_energy (from the SolveReport, empty unless the tracker ran; free_energy
+//    also empty while the tracker leaves it NaN);
 //  - tracks.csv: the truth first (algorithm `truth`, track = target number 1.., confirmed 1,
 //    the scans where the target is alive, variances empty), then per tracker that ran, per
 //    track in its order, per scan of the track: g, g_dot, theta, theta_dot and the covariance
@@ -16,7 +16,8 @@
 //    ~100× the size of everything else): per scan, per measurement in the scan's order, r,
 //    r_dot, azimuth and its origin (target number 1.., path τ 1.. as in Table II; −1 and −1
 //    for clutter).
-// Scans are 0-based. A tracker that throws gets status failed:<what()>, one that sets
+// Scans are 0-based. Before each call the tracker's report is reset and its track set
+// cleared; the tracker object is reused for every item of its thread. A tracker that throws gets status failed:<what()>, one that sets
 // report.skipped gets skipped:<reason>, and one whose tracks do not fit the run (state rows
 // below 4, covariance shape differing from the states, scans outside 0..K−1) gets
 // failed:<why>; the other trackers and items go on. A draw without truth targets is scored
