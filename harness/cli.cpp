@@ -68,6 +68,7 @@ fs::path experiments_folder() {
 int command_list() {
   std::string out;
   const auto describe = [&out](const auto& registry) {
+    if (registry.entries().empty()) out += "  (none registered)\n";
     for (const auto& [name, entry] : registry.entries()) {
       out += fmt::format("  {:<10} {}\n", name, entry.summary);
       for (const auto& param : entry.defaults) out += fmt::format("      {:<16} = {:<10} {}\n", param.key, ParamList::format(param), param.doc);

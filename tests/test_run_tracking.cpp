@@ -13,6 +13,7 @@
 //  - unknown trackers and references are one-line errors, also from the command line.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
