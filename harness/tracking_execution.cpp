@@ -34,12 +34,14 @@ void append_status(std::string& row, const SolveReport& report) {
   }
 }
 
-// A failure reason on one CSV line: resume counts lines, so no line breaks.
-std::string failure(std::string_view what) {
-  std::string reason = "failed:";
-  for (const char c : what) reason += (c == '\n' || c == '\r') ? ' ' : c;
-  return reason;
+// A status reason on one CSV line: resume counts lines, so no line breaks.
+std::string one_line(std::string_view reason) {
+  std::string line;
+  for (const char c : reason) line += (c == '\n' || c == '\r') ? ' ' : c;
+  return line;
 }
+
+std::string failure(std::string_view what) { return "failed:" + one_line(what); }
 
 // Why `tracks` cannot be written or scored against a run of `scans` scans; "" if they can.
 std::string tracks_error(const TrackSet& tracks, int scans) {
@@ -124,7 +126,10 @@ void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
       report.skipped = failure(error.what());
     }
     worker.tet_s[a] = std::chrono::duration<double>(Clock::now() - t0).count();
-    if (!report.skipped.empty()) continue;
+    if (!report.skipped.empty()) {
+      report.skipped = one_line(report.skipped);
+      continue;
+    }
     if (const std::string error = tracks_error(tracks, scans); !error.empty()) {
       report.skipped = failure(error);
       continue;

@@ -20,7 +20,7 @@
 // cleared; the tracker object is reused for every item of its thread. A tracker that throws gets status failed:<what()>, one that sets
 // report.skipped gets skipped:<reason>, and one whose tracks do not fit the run (state rows
 // below 4, covariance shape differing from the states, scans outside 0..K−1) gets
-// failed:<why>; the other trackers and items go on. A draw without truth targets is scored
+// failed:<why>; the other trackers and items go on. Line breaks in reasons become spaces. A draw without truth targets is scored
 // against a target that is never alive, which changes no metric (NVT 0, TPD/TTL/AEE empty,
 // NFT and MOSPA count the tracks).
 #include <memory>
