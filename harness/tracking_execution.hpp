@@ -12,17 +12,18 @@
 //    the scans where the target is alive, variances empty), then per tracker that ran, per
 //    track in its order, per scan of the track: g, g_dot, theta, theta_dot and the covariance
 //    diagonal var_* (rows 0..3 of the state: [g, ġ, ϑ, ϑ̇], the layout the metrics assume);
-//  - measurements.csv: trial 0 of each point only (Fig. 5 needs one run; all trials would be
-//    ~100× the size of everything else): per scan, per measurement in the scan's order, r,
+//  - measurements.csv: trial 0 of each point only (Fig. 5 needs one run; all 100 runs would
+//    take ~100 MB per point at N_c = 400): per scan, per measurement in the scan's order, r,
 //    r_dot, azimuth and its origin (target number 1.., path τ 1.. as in Table II; −1 and −1
 //    for clutter).
 // Scans are 0-based. Before each call the tracker's report is reset and its track set
-// cleared; the tracker object is reused for every item of its thread. A tracker that throws gets status failed:<what()>, one that sets
-// report.skipped gets skipped:<reason>, and one whose tracks do not fit the run (state rows
-// below 4, covariance shape differing from the states, scans outside 0..K−1) gets
-// failed:<why>; the other trackers and items go on. Line breaks in reasons become spaces. A draw without truth targets is scored
-// against a target that is never alive, which changes no metric (NVT 0, TPD/TTL/AEE empty,
-// NFT and MOSPA count the tracks).
+// cleared; the tracker object is reused for every item of its thread. A tracker that throws
+// gets status failed:<what()>, one that sets report.skipped gets skipped:<reason>, and one
+// whose tracks do not fit the run (state rows below 4, covariance shape differing from the
+// states, scans outside 0..K−1) gets failed:<why>; the other trackers and items go on. Line
+// breaks in reasons become spaces. A draw without truth targets is scored against a target
+// that is never alive, which changes no metric (NVT 0, TPD/TTL/AEE empty, NFT and MOSPA count
+// the tracks).
 #include <memory>
 #include <string>
 #include <vector>
