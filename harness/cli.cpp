@@ -68,6 +68,7 @@ fs::path experiments_folder() {
 int command_list() {
   std::string out;
   const auto describe = [&out](const auto& registry) {
+    if (registry.entries().empty()) out += "  (none registered)\n";
     for (const auto& [name, entry] : registry.entries()) {
       out += fmt::format("  {:<10} {}\n", name, entry.summary);
       for (const auto& param : entry.defaults) out += fmt::format("      {:<16} = {:<10} {}\n", param.key, ParamList::format(param), param.doc);
@@ -77,6 +78,8 @@ int command_list() {
   describe(single_scan_registry());
   out += "\nMulti-scan algorithms (for multi-scan scenarios):\n";
   describe(multi_scan_registry());
+  out += "\nTrackers (for tracking scenarios):\n";
+  describe(tracker_registry());
   out += "\nScenarios (parameters settable in an experiment's [scenario] and [sweep] sections):\n";
   describe(scenario_registry());
   out += "\nMulti-scan scenarios (run multi-scan algorithms; metrics against the truth):\n";
@@ -197,8 +200,10 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
                  outcome.items_written, outcome.items_total, resume_line.c_str());
     return 130;
   }
-  std::fprintf(stderr, "dabench: %lld trials done; results in %s/ (trials.csv%s, summary.csv, meta.json)\n",
-               outcome.items_total, outcome.output.c_str(), outcome.multi_scan ? ", targets.csv" : "");
+  std::string files = "trials.csv";
+  for (const std::string& file : outcome.item_files) files += ", " + file;
+  std::fprintf(stderr, "dabench: %lld trials done; results in %s/ (%s, summary.csv, meta.json)\n",
+               outcome.items_total, outcome.output.c_str(), files.c_str());
   return 0;
 }
 

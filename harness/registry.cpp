@@ -57,7 +57,8 @@ std::unique_ptr<Tracker> make_tracker(std::string_view spec_text) {
   const Spec spec = parse_spec(spec_text);
   const auto* entry = tracker_registry().find(spec.name);
   if (entry == nullptr) {
-    throw InputError(fmt::format("unknown tracker '{}' (known: {})", spec.name, tracker_registry().names()));
+    const std::string known = tracker_registry().names();
+    throw InputError(fmt::format("unknown tracker '{}' (known: {})", spec.name, known.empty() ? "none registered" : known));
   }
   return entry->create(spec.settings);
 }

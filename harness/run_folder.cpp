@@ -15,7 +15,6 @@ namespace dabench {
 namespace fs = std::filesystem;
 
 std::string trials_path(const RunPlan& plan) { return (fs::path(plan.output) / "trials.csv").string(); }
-std::string targets_path(const RunPlan& plan) { return (fs::path(plan.output) / "targets.csv").string(); }
 std::string summary_path(const RunPlan& plan) { return (fs::path(plan.output) / "summary.csv").string(); }
 std::string meta_path(const RunPlan& plan) { return (fs::path(plan.output) / "meta.json").string(); }
 
@@ -101,9 +100,9 @@ OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force, cons
 
 namespace dabench {
 
-std::FILE* open_targets_file(const RunPlan& plan, long long items_done, bool resumed) {
-  const std::string path = targets_path(plan);
-  const std::string header = plan.targets_header();
+std::FILE* open_item_file(const RunPlan& plan, const ItemFile& item_file, long long items_done, bool resumed) {
+  const std::string path = (fs::path(plan.output) / item_file.name).string();
+  const std::string& header = item_file.header;
   if (resumed && items_done > 0) {
     const std::string text = read_all(path);
     if (text.compare(0, header.size(), header) != 0) {

@@ -1,7 +1,7 @@
 #pragma once
 // The output folder of a run: refuses to mix runs, and prepares trials.csv for a fresh start
-// (--force or a new folder) or for --resume (keeps the whole items already written), and
-// targets.csv likewise for multi-scan runs.
+// (--force or a new folder) or for --resume (keeps the whole items already written), and the
+// kind's per-item files (RunPlan::item_files: targets.csv, tracks.csv, ...) likewise.
 #include <cstdio>
 #include <string>
 
@@ -18,13 +18,12 @@ struct OpenedTrials {
 // `initial_meta` is written to meta.json before a fresh trials.csv is created.
 OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force, const std::string& initial_meta);
 
-// targets.csv of a multi-scan run, matching trials.csv's `items_done` whole items: created
-// with its header for a fresh run; for a resumed one, trimmed to the rows of those items (the
-// writer writes targets.csv before trials.csv, so it never holds fewer items).
-std::FILE* open_targets_file(const RunPlan& plan, long long items_done, bool resumed);
+// A per-item file matching trials.csv's `items_done` whole items: created with its header for
+// a fresh run; for a resumed one, trimmed to the rows of those items (the writer writes it
+// before trials.csv, so it never holds fewer items).
+std::FILE* open_item_file(const RunPlan& plan, const ItemFile& file, long long items_done, bool resumed);
 
 std::string trials_path(const RunPlan& plan);
-std::string targets_path(const RunPlan& plan);
 std::string summary_path(const RunPlan& plan);
 std::string meta_path(const RunPlan& plan);
 

@@ -20,27 +20,49 @@ std::string point_columns(const std::vector<KeyValue>& params) {
   return header;
 }
 
-// A multi-scan algorithm's name given where a single-scan one is expected, or the reverse.
-std::string kind_hint(const std::string& spec, bool multi_scan, const std::string& scenario) {
+std::string_view kind_name(RunKind kind) {
+  switch (kind) {
+    case RunKind::single_scan: return "single-scan";
+    case RunKind::multi_scan: return "multi-scan";
+    case RunKind::tracking: return "tracking";
+  }
+  return {};
+}
+
+// A SPEC naming an algorithm of another kind than the scenario's: say so.
+std::string kind_hint(const std::string& spec, RunKind kind, const std::string& scenario) {
   std::string name;
   try {
     name = parse_spec(spec).name;
   } catch (const InputError&) {
     return {};
   }
-  if (multi_scan && single_scan_registry().find(name) != nullptr) {
-    return fmt::format(" ('{}' is a single-scan algorithm; scenario '{}' is multi-scan)", name, scenario);
-  }
-  if (!multi_scan && multi_scan_registry().find(name) != nullptr) {
-    return fmt::format(" ('{}' is a multi-scan algorithm; scenario '{}' is single-scan)", name, scenario);
-  }
+  const auto hint = [&](std::string_view what) {
+    return fmt::format(" ('{}' is a {}; scenario '{}' is {})", name, what, scenario, kind_name(kind));
+  };
+  if (kind != RunKind::single_scan && single_scan_registry().find(name) != nullptr) return hint("single-scan algorithm");
+  if (kind != RunKind::multi_scan && multi_scan_registry().find(name) != nullptr) return hint("multi-scan algorithm");
+  if (kind != RunKind::tracking && tracker_registry().find(name) != nullptr) return hint("tracker");
   return {};
+}
+
+void check_spec(const std::string& spec, RunKind kind) {
+  switch (kind) {
+    case RunKind::single_scan: make_single_scan_solver(spec); return;
+    case RunKind::multi_scan: make_multi_scan_solver(spec); return;
+    case RunKind::tracking: make_tracker(spec); return;
+  }
 }
 
 }  // namespace
 
 const std::vector<std::string>& RunPlan::metric_columns() const {
-  return multi_scan ? multi_scan_metric_columns() : single_scan_metric_columns();
+  switch (kind) {
+    case RunKind::multi_scan: return multi_scan_metric_columns();
+    case RunKind::tracking: return tracking_metric_columns();
+    case RunKind::single_scan: break;
+  }
+  return single_scan_metric_columns();
 }
 
 std::string RunPlan::trials_header() const {
@@ -49,8 +71,17 @@ std::string RunPlan::trials_header() const {
   return header + "\n";
 }
 
-std::string RunPlan::targets_header() const {
-  return point_columns(point_params.front()) + ",trial,seed,algorithm,target,hpd,entropy\n";
+std::vector<ItemFile> RunPlan::item_files() const {
+  const std::string point = point_columns(point_params.front());
+  switch (kind) {
+    case RunKind::multi_scan: return {{"targets.csv", point + ",trial,seed,algorithm,target,hpd,entropy\n"}};
+    case RunKind::tracking:
+      return {{"tracks.csv", point + ",trial,algorithm,track,confirmed,scan,g,g_dot,theta,theta_dot,"
+                                     "var_g,var_g_dot,var_theta,var_theta_dot\n"},
+              {"measurements.csv", point + ",trial,scan,r,r_dot,azimuth,origin_target,origin_path\n"}};
+    case RunKind::single_scan: break;
+  }
+  return {};
 }
 
 std::string RunPlan::fingerprint() const {
@@ -112,20 +143,26 @@ RunPlan make_run_plan(const RunOptions& options) {
 
   const auto* single_scan = scenario_registry().find(experiment.scenario);
   const auto* multi_scan = multi_scan_scenario_registry().find(experiment.scenario);
-  if (single_scan == nullptr && multi_scan == nullptr) {
+  const auto* tracking = tracking_scenario_registry().find(experiment.scenario);
+  if (single_scan == nullptr && multi_scan == nullptr && tracking == nullptr) {
     std::string known = scenario_registry().names();
-    if (!multi_scan_scenario_registry().entries().empty()) known += ", " + multi_scan_scenario_registry().names();
+    for (const std::string& more : {multi_scan_scenario_registry().names(), tracking_scenario_registry().names()}) {
+      if (!more.empty()) known += ", " + more;
+    }
     throw InputError(fmt::format("{}: unknown scenario '{}' (known: {})", path, experiment.scenario, known));
   }
-  plan.multi_scan = multi_scan != nullptr;
-  if (plan.multi_scan && !experiment.references.empty()) {
-    throw InputError(fmt::format("{}: scenario '{}' is multi-scan: its metrics are against the truth, so "
-                                 "'reference' lines are not used (remove them)", path, experiment.scenario));
+  plan.kind = multi_scan != nullptr ? RunKind::multi_scan : tracking != nullptr ? RunKind::tracking : RunKind::single_scan;
+  if (plan.kind != RunKind::single_scan && !experiment.references.empty()) {
+    throw InputError(fmt::format("{}: scenario '{}' is {}: its metrics are against the truth, so "
+                                 "'reference' lines are not used (remove them)", path, experiment.scenario,
+                                 kind_name(plan.kind)));
   }
   for (std::size_t p = 0; p < experiment.points.size(); ++p) {
     try {
-      plan.point_params.push_back(plan.multi_scan ? multi_scan->resolve(experiment.points[p])
-                                                  : single_scan->resolve(experiment.points[p]));
+      const std::vector<KeyValue>& settings = experiment.points[p];
+      plan.point_params.push_back(multi_scan != nullptr ? multi_scan->resolve(settings)
+                                  : tracking != nullptr ? tracking->resolve(settings)
+                                                        : single_scan->resolve(settings));
     } catch (const InputError& error) {
       throw InputError(fmt::format("{}: sweep point {}: {}", path, p, error.what()));
     }
@@ -148,10 +185,9 @@ RunPlan make_run_plan(const RunOptions& options) {
   }
   for (const std::string& spec : plan.specs) {
     try {
-      if (plan.multi_scan) make_multi_scan_solver(spec);
-      else make_single_scan_solver(spec);
+      check_spec(spec, plan.kind);
     } catch (const InputError& error) {
-      throw InputError(fmt::format("{}: {}{}", path, error.what(), kind_hint(spec, plan.multi_scan, experiment.scenario)));
+      throw InputError(fmt::format("{}: {}{}", path, error.what(), kind_hint(spec, plan.kind, experiment.scenario)));
     }
   }
   return plan;

@@ -3,7 +3,8 @@
 // SPECs to run, built before any output is written. The scenario's kind decides the kind of
 // run: a single-scan scenario runs single-scan algorithms against a reference; a multi-scan
 // scenario runs multi-scan algorithms, measured against the scenario's truth (no reference),
-// and also writes targets.csv (one row per target).
+// and also writes targets.csv (one row per target); a tracking scenario runs trackers against
+// the truth and also writes tracks.csv and measurements.csv (harness/tracking_execution.hpp).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -13,13 +14,22 @@
 
 namespace dabench {
 
+enum class RunKind { single_scan, multi_scan, tracking };
+
+// A per-item file beside trials.csv: its rows start with the point's prefix then `trial`, in
+// item order, so --resume can trim it to the items trials.csv holds.
+struct ItemFile {
+  std::string name;    // e.g. "targets.csv"
+  std::string header;  // with its newline
+};
+
 struct RunPlan {
   Experiment experiment;
   std::vector<std::vector<KeyValue>> point_settings;  // as written (fixed + swept)
   std::vector<std::vector<KeyValue>> point_params;    // every scenario parameter, effective value
   std::vector<std::string> specs;                     // references first, then algorithms
   int references = 0;                                 // how many leading specs are references
-  bool multi_scan = false;                            // the scenario is a multi-scan scenario
+  RunKind kind = RunKind::single_scan;                // from the scenario's registry
   std::int64_t trials = 0;
   std::uint64_t seed = 0;
   int threads = 1;
@@ -28,7 +38,9 @@ struct RunPlan {
   long long items() const { return static_cast<long long>(point_params.size()) * trials; }
   const std::vector<std::string>& metric_columns() const;  // of trials.csv, by kind
   std::string trials_header() const;
-  std::string targets_header() const;  // multi-scan runs: point, parameters, trial, seed, algorithm, target, hpd, entropy
+  // The per-item files of this kind, in the order the writer fills them (before trials.csv):
+  // multi-scan: targets.csv; tracking: tracks.csv, measurements.csv.
+  std::vector<ItemFile> item_files() const;
   std::string fingerprint() const;  // identifies the run for --resume
   // The leading fields of every row, precomputed once per run: "point,param values" per point,
   // and the CSV-quoted SPEC per algorithm.

@@ -25,6 +25,7 @@
 #include "harness/run_folder.hpp"
 #include "harness/run_plan.hpp"
 #include "harness/summary.hpp"
+#include "harness/tracking_execution.hpp"
 
 namespace dabench {
 
@@ -37,6 +38,13 @@ const std::vector<std::string>& single_scan_metric_columns() {
 const std::vector<std::string>& multi_scan_metric_columns() {
   static const std::vector<std::string> columns = {"n_targets", "n_scans", "n_measurements", "mean_hpd",  "max_hpd",
                                                    "mean_entropy", "time_us", "iterations",  "converged"};
+  return columns;
+}
+
+const std::vector<std::string>& tracking_metric_columns() {
+  static const std::vector<std::string> columns = {
+      "nvt",          "tpd",          "nft",      "false_tracks", "ghost_tracks", "broken_targets", "ttl_scans",
+      "aee_range_km", "aee_bearing_mrad", "mospa_km", "tet_s",        "iterations",   "converged",      "free_energy"};
   return columns;
 }
 
@@ -232,6 +240,7 @@ std::string meta_json(const RunPlan& plan, const RunOptions& options, const std:
       .add("end_time", status == "running" ? std::string() : utc_now())
       .add("wall_seconds", wall_seconds)
       .add("work_fraction", work_fraction);
+  if (plan.kind == RunKind::tracking) meta.add_raw("tracking_metrics", tracking_metrics_json(TrackingMetricsOptions{}));
   return meta.str();
 }
 
@@ -243,8 +252,8 @@ RunOutcome run_experiment(const RunOptions& options) {
   OpenedTrials opened = open_trials_file(plan, options.resume, options.force,
                                          meta_json(plan, options, started, "running", 0, 0.0, std::nan(""), false));
   std::vector<std::FILE*> files;
-  if (plan.multi_scan) files.push_back(open_targets_file(plan, opened.items_done, opened.resumed));
-  files.push_back(opened.file);  // trials.csv last: targets.csv never holds fewer items
+  for (const ItemFile& file : plan.item_files()) files.push_back(open_item_file(plan, file, opened.items_done, opened.resumed));
+  files.push_back(opened.file);  // trials.csv last: the item files never hold fewer items
   write_file_atomically(meta_path(plan), meta_json(plan, options, started, "running", opened.items_done, 0.0,
                                                    std::nan(""), opened.resumed));
 
@@ -261,7 +270,14 @@ RunOutcome run_experiment(const RunOptions& options) {
   const auto wall_start = Clock::now();
   std::atomic<long long> items_finished{opened.items_done};
   double busy_seconds = 0.0;
-  if (plan.multi_scan) {
+  if (plan.kind == RunKind::tracking) {
+    std::vector<std::unique_ptr<TrackingScenario>> scenarios;
+    const auto* entry = tracking_scenario_registry().find(plan.experiment.scenario);
+    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
+    const TrackingExecution execution(plan, std::move(scenarios), TrackingMetricsOptions{});
+    busy_seconds = run_blocks(execution, writer, progress, plan.threads, first_block, skip_in_first, total_items,
+                              items_finished);
+  } else if (plan.kind == RunKind::multi_scan) {
     std::vector<std::unique_ptr<MultiScanScenario>> scenarios;
     const auto* entry = multi_scan_scenario_registry().find(plan.experiment.scenario);
     for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
@@ -288,7 +304,7 @@ RunOutcome run_experiment(const RunOptions& options) {
   outcome.items_written = std::min(total_items, writer.next_block() * kItemsPerBlock);
   outcome.interrupted = outcome.items_written < total_items;
   outcome.output = plan.output;
-  outcome.multi_scan = plan.multi_scan;
+  for (const ItemFile& file : plan.item_files()) outcome.item_files.push_back(file.name);
   const double work_fraction = wall_seconds > 0.0 ? busy_seconds / (wall_seconds * plan.threads) : std::nan("");
   if (!outcome.interrupted) write_summary(trials_path(plan), summary_path(plan), plan.metric_columns());
   write_file_atomically(meta_path(plan),

@@ -1,6 +1,7 @@
 #pragma once
 // `dabench run`: turns an experiment into work items (point, trial), runs them on OpenMP
-// threads, and writes trials.csv (in item order, as items finish), summary.csv and meta.json.
+// threads, and writes trials.csv (in item order, as items finish), the kind's per-item files
+// (multi-scan: targets.csv; tracking: tracks.csv, measurements.csv), summary.csv and meta.json.
 //
 // Every item draws its scenario from its own counter-based stream (seed, point, trial) and
 // runs the reference and every algorithm on that same draw, so rows are bit-identical (timings
@@ -29,15 +30,17 @@ struct RunOutcome {
   long long items_total = 0;
   long long items_written = 0;
   bool interrupted = false;
-  bool multi_scan = false;  // targets.csv was written too
+  std::vector<std::string> item_files;  // written beside trials.csv (e.g. targets.csv)
   std::string output;
 };
 
 // Throws InputError for anything wrong before the run starts.
 RunOutcome run_experiment(const RunOptions& options);
 
-// Column names of the metrics in trials.csv, in order, for single- and multi-scan runs.
+// Column names of the metrics in trials.csv, in order, for single-scan, multi-scan and
+// tracking runs.
 const std::vector<std::string>& single_scan_metric_columns();
 const std::vector<std::string>& multi_scan_metric_columns();
+const std::vector<std::string>& tracking_metric_columns();
 
 }  // namespace dabench

@@ -1,0 +1,202 @@
+#include "harness/tracking_execution.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "harness/csv.hpp"
+#include "harness/errors.hpp"
+#include "harness/registry.hpp"
+
+namespace dabench {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kStateColumns = 4;  // [g, ġ, ϑ, ϑ̇]
+constexpr TrackingMetrics kMissing{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
+
+void append_number(std::string& row, double value) {
+  row += ',';
+  if (std::isfinite(value)) fmt::format_to(std::back_inserter(row), "{}", value);
+}
+
+void append_status(std::string& row, const SolveReport& report) {
+  if (report.skipped.empty()) {
+    row += "ok";
+  } else if (report.skipped.rfind("failed:", 0) == 0) {
+    append_csv_field(row, report.skipped);
+  } else {
+    append_csv_field(row, "skipped:" + report.skipped);
+  }
+}
+
+// A status reason on one CSV line: resume counts lines, so no line breaks.
+std::string one_line(std::string_view reason) {
+  std::string line;
+  for (const char c : reason) line += (c == '\n' || c == '\r') ? ' ' : c;
+  return line;
+}
+
+std::string failure(std::string_view what) { return "failed:" + one_line(what); }
+
+// Why `tracks` cannot be written or scored against a run of `scans` scans; "" if they can.
+std::string tracks_error(const TrackSet& tracks, int scans) {
+  for (const Track& track : tracks.tracks) {
+    if (track.states.rows() < kStateColumns) {
+      return fmt::format("track {} has {} state rows, expected at least {}", track.id, track.states.rows(), kStateColumns);
+    }
+    if (track.covariance_diagonals.rows() != track.states.rows() ||
+        track.covariance_diagonals.cols() != track.states.cols()) {
+      return fmt::format("track {} covariance diagonals are {}x{}, states {}x{}", track.id,
+                         track.covariance_diagonals.rows(), track.covariance_diagonals.cols(), track.states.rows(),
+                         track.states.cols());
+    }
+    if (track.first_scan < 0 || track.first_scan + track.length() > scans) {
+      return fmt::format("track {} covers scans {}..{}, outside 0..{}", track.id, track.first_scan,
+                         track.first_scan + track.length() - 1, scans - 1);
+    }
+  }
+  return {};
+}
+
+// The truth to score against: the draw's, or for a draw without targets one target that is
+// never alive (metrics need the scan count; such a target changes no metric).
+const TrackingTruth& scoring_truth(const TrackingTruth& truth, int scans, TrackingTruth& never_alive) {
+  if (!truth.targets.empty()) return truth;
+  never_alive.targets.assign(1, {Eigen::MatrixXd::Constant(kStateColumns, scans, kNaN), std::vector<bool>(scans, false)});
+  return never_alive;
+}
+
+}  // namespace
+
+std::string tracking_metrics_json(const TrackingMetricsOptions& options) {
+  return fmt::format(R"({{"min_track_length": {}, "gate_km": {}, "min_follow_fraction": {}, "ospa_cutoff_km": {}, )"
+                     R"("ospa_order": {}}})",
+                     options.min_track_length, options.gate_km, options.min_follow_fraction, options.ospa_cutoff_km,
+                     options.ospa_order);
+}
+
+TrackingExecution::TrackingExecution(const RunPlan& plan, std::vector<std::unique_ptr<TrackingScenario>> scenarios,
+                                     const TrackingMetricsOptions& metrics)
+    : plan_(plan),
+      scenarios_(std::move(scenarios)),
+      metrics_(metrics),
+      point_prefix_(plan.point_row_prefixes()),
+      spec_field_(plan.spec_fields()) {
+  metrics_.validate();
+}
+
+TrackingWorker TrackingExecution::make_worker() const {
+  TrackingWorker worker;
+  for (const std::string& spec : plan_.specs) worker.trackers.push_back(make_tracker(spec));
+  worker.tracks.resize(plan_.specs.size());
+  worker.reports.resize(plan_.specs.size());
+  worker.metrics.resize(plan_.specs.size());
+  worker.tet_s.resize(plan_.specs.size());
+  worker.texts.resize(3);
+  return worker;
+}
+
+void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
+  const auto point = static_cast<std::uint32_t>(item / plan_.trials);
+  const auto trial = static_cast<std::uint32_t>(item % plan_.trials);
+  const auto start = Clock::now();
+  RandomStream rng(plan_.seed, point, trial);
+  scenarios_[point]->generate(rng, worker.sample);
+  const TrackingProblem& problem = worker.sample.problem;
+  const TrackingTruth& truth = worker.sample.truth;
+  const int scans = problem.scan_count();
+  TrackingTruth never_alive;
+  const TrackingTruth& scored = scoring_truth(truth, scans, never_alive);
+
+  const std::size_t count = worker.trackers.size();
+  for (std::size_t a = 0; a < count; ++a) {
+    SolveReport& report = worker.reports[a];
+    TrackSet& tracks = worker.tracks[a];
+    report.reset();
+    tracks.tracks.clear();
+    const auto t0 = Clock::now();
+    try {
+      worker.trackers[a]->run(problem, tracks, report);
+    } catch (const std::exception& error) {  // e.g. std::bad_alloc: record it, go on
+      report.skipped = failure(error.what());
+    }
+    worker.tet_s[a] = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (!report.skipped.empty()) {
+      report.skipped = one_line(report.skipped);
+      continue;
+    }
+    if (const std::string error = tracks_error(tracks, scans); !error.empty()) {
+      report.skipped = failure(error);
+      continue;
+    }
+    try {
+      worker.metrics[a] = compute_tracking_metrics(scored, tracks, metrics_);
+    } catch (const InputError& error) {
+      report.skipped = failure(error.what());
+    }
+  }
+  worker.busy_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+
+  std::string& track_rows = worker.texts[0];
+  std::string& measurement_rows = worker.texts[1];
+  std::string& trial_rows = worker.texts[2];
+  const std::string& prefix = point_prefix_[point];
+  for (std::size_t i = 0; i < truth.targets.size(); ++i) {
+    const TrackingTruth::Target& target = truth.targets[i];
+    for (int k = 0; k < scans; ++k) {
+      if (!target.alive[k]) continue;
+      fmt::format_to(std::back_inserter(track_rows), "{},{},truth,{},1,{}", prefix, trial, i + 1, k);
+      for (int c = 0; c < kStateColumns; ++c) append_number(track_rows, target.states(c, k));
+      track_rows += ",,,,\n";
+    }
+  }
+  for (std::size_t a = 0; a < count; ++a) {
+    if (!worker.reports[a].skipped.empty()) continue;
+    for (const Track& track : worker.tracks[a].tracks) {
+      for (int s = 0; s < track.length(); ++s) {
+        fmt::format_to(std::back_inserter(track_rows), "{},{},{},{},{},{}", prefix, trial, spec_field_[a], track.id,
+                       track.confirmed ? 1 : 0, track.first_scan + s);
+        for (int c = 0; c < kStateColumns; ++c) append_number(track_rows, track.states(c, s));
+        for (int c = 0; c < kStateColumns; ++c) append_number(track_rows, track.covariance_diagonals(c, s));
+        track_rows += '\n';
+      }
+    }
+  }
+
+  if (trial == 0) {
+    for (int k = 0; k < scans; ++k) {
+      const Eigen::MatrixXd& scan = problem.scans[k];
+      for (Eigen::Index j = 0; j < scan.cols(); ++j) {
+        fmt::format_to(std::back_inserter(measurement_rows), "{},{},{}", prefix, trial, k);
+        for (Eigen::Index c = 0; c < 3; ++c) append_number(measurement_rows, c < scan.rows() ? scan(c, j) : kNaN);
+        const MeasurementOrigin& origin = truth.origin[k][j];
+        fmt::format_to(std::back_inserter(measurement_rows), ",{},{}\n", origin.is_clutter() ? -1 : origin.target + 1,
+                       origin.is_clutter() ? -1 : origin.path + 1);
+      }
+    }
+  }
+
+  for (std::size_t a = 0; a < count; ++a) {
+    const SolveReport& report = worker.reports[a];
+    const bool ok = report.skipped.empty();
+    const TrackingMetrics m = ok ? worker.metrics[a] : kMissing;
+    fmt::format_to(std::back_inserter(trial_rows), "{},{},{},{},", prefix, trial, plan_.seed, spec_field_[a]);
+    append_status(trial_rows, report);
+    for (const double value : {m.nvt, m.tpd, m.nft, m.false_tracks, m.ghost_tracks, m.broken_targets, m.ttl_scans,
+                               m.aee_range_km, 1e3 * m.aee_bearing_rad, m.mospa_km}) {
+      append_number(trial_rows, value);
+    }
+    append_number(trial_rows, worker.tet_s[a]);
+    append_number(trial_rows, ok ? report.iterations : kNaN);
+    append_number(trial_rows, ok ? (report.converged ? 1.0 : 0.0) : kNaN);
+    append_number(trial_rows, ok ? report.free_energy : kNaN);
+    trial_rows += '\n';
+  }
+}
+
+}  // namespace dabench
