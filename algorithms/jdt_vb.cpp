@@ -148,7 +148,8 @@ class Run {
   }
 
   void sequential_pass();
-  void batch(std::vector<double>& history, int& rejected, SolveReport& report);
+  // `iterations`, when set, receives the output before the first iteration and after each.
+  void batch(std::vector<double>& history, int& rejected, SolveReport& report, std::vector<TrackSet>* iterations);
   void output(TrackSet& tracks) const;
 
  private:
@@ -607,7 +608,7 @@ double Run::free_energy() const {
   return b;
 }
 
-void Run::batch(std::vector<double>& history, int& rejected, SolveReport& report) {
+void Run::batch(std::vector<double>& history, int& rejected, SolveReport& report, std::vector<TrackSet>* iterations) {
   const int scans = problem_.scan_count();
   scans_.assign(scans, {});
   for (int i : batch_) {
@@ -621,6 +622,7 @@ void Run::batch(std::vector<double>& history, int& rejected, SolveReport& report
     }
   }
   report.converged = false;
+  if (iterations) output(iterations->emplace_back());
   for (int r = 1; r <= o_.max_iterations; ++r) {
     // Module 3: gates about q(x) (grown), eq (43) evidence, LBP.
     for (int k = 0; k < scans; ++k) {
@@ -662,6 +664,7 @@ void Run::batch(std::vector<double>& history, int& rejected, SolveReport& report
     }
     history.push_back(free_energy());
     report.iterations = r;
+    if (iterations) output(iterations->emplace_back());
     if (r > 1 && std::abs(history[r - 1] - history[r - 2]) < o_.convergence) {
       report.converged = true;
       break;
@@ -722,7 +725,7 @@ void JdtVbTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveRe
   }
   Run run(options_, problem);
   run.sequential_pass();
-  run.batch(free_energy_history_, rejected_updates_, report);
+  run.batch(free_energy_history_, rejected_updates_, report, iteration_history());
   run.output(tracks);
 }
 

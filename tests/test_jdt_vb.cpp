@@ -195,3 +195,20 @@ TEST_CASE("jdt-vb: options are checked", "[jdt_vb]") {
   tracker->run(empty, tracks, report);
   CHECK(report.skipped == "problem_without_multipath_sensor");
 }
+
+TEST_CASE("jdt-vb: the iteration history holds the tracks before and after every VB iteration", "[jdt_vb]") {
+  auto tracker = dabench::make_tracker("jdt-vb");
+  std::vector<dabench::TrackSet> history;
+  tracker->record_iterations(&history);
+  const auto sample = draw(0.75, 125.0, 1);
+  dabench::TrackSet tracks;
+  dabench::SolveReport report;
+  tracker->run(sample.problem, tracks, report);
+  REQUIRE(history.size() == static_cast<std::size_t>(report.iterations) + 1);
+  // The last entry is the output; r = 0 is the sequential pass, whose estimates differ.
+  REQUIRE(history.back().tracks.size() == tracks.tracks.size());
+  for (std::size_t t = 0; t < tracks.tracks.size(); ++t) CHECK(history.back().tracks[t].states == tracks.tracks[t].states);
+  const auto before = dabench::compute_tracking_metrics(sample.truth, history.front(), {});
+  const auto after = dabench::compute_tracking_metrics(sample.truth, tracks, {});
+  CHECK(after.aee_range_km < before.aee_range_km);  // smoothing over the run beats filtering
+}
