@@ -664,7 +664,10 @@ void Run::batch(std::vector<double>& history, int& rejected, SolveReport& report
     }
     history.push_back(free_energy());
     report.iterations = r;
-    if (iterations) output(iterations->emplace_back());
+    if (iterations) {
+      output(iterations->emplace_back());
+      iterations->back().objective = history.back();
+    }
     if (r > 1 && std::abs(history[r - 1] - history[r - 2]) < o_.convergence) {
       report.converged = true;
       break;
@@ -675,6 +678,7 @@ void Run::batch(std::vector<double>& history, int& rejected, SolveReport& report
 
 void Run::output(TrackSet& out) const {
   out.tracks.clear();
+  out.objective = std::numeric_limits<double>::quiet_NaN();
   for (int i : batch_) {
     const TrackRecord& t = tracks_[i];
     int from = -1, to = -1;
@@ -727,6 +731,7 @@ void JdtVbTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveRe
   run.sequential_pass();
   run.batch(free_energy_history_, rejected_updates_, report, iteration_history());
   run.output(tracks);
+  tracks.objective = report.free_energy;
 }
 
 DABENCH_REGISTER_TRACKER(JdtVbTracker);

@@ -10,6 +10,7 @@
 //    and Poisson clutter uniform over a box in measurement space.
 //  - TrackingTruth: what only metrics, tests and plots may read.
 //  - TrackSet: a tracker's output.
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -88,6 +89,9 @@ struct Track {
 
 struct TrackSet {
   std::vector<Track> tracks;
+  // The tracker's objective for these tracks where it has one (JDT-VB: the free energy B of
+  // the iteration that produced them); NaN otherwise.
+  double objective = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace dabench

@@ -205,6 +205,9 @@ TEST_CASE("jdt-vb: the iteration history holds the tracks before and after every
   dabench::SolveReport report;
   tracker->run(sample.problem, tracks, report);
   REQUIRE(history.size() == static_cast<std::size_t>(report.iterations) + 1);
+  const auto& energies = dynamic_cast<dabench::JdtVbTracker&>(*tracker).free_energy_history();
+  CHECK(std::isnan(history.front().objective));  // before the first iteration B is not defined
+  for (std::size_t r = 1; r < history.size(); ++r) CHECK(history[r].objective == energies[r - 1]);
   // The last entry is the output; r = 0 is the sequential pass, whose estimates differ.
   REQUIRE(history.back().tracks.size() == tracks.tracks.size());
   for (std::size_t t = 0; t < tracks.tracks.size(); ++t) CHECK(history.back().tracks[t].states == tracks.tracks[t].states);
