@@ -249,7 +249,7 @@ struct Group {
   std::vector<int> members;  // slant track ids
   std::vector<int> labels;   // path per member, −1 = none yet
   double chi2 = 0.0;
-  Estimate fused;
+  Estimate fused{Vector4::Zero(), Matrix4::Identity()};
 };
 
 struct FusedOutput {
@@ -493,21 +493,12 @@ class MptfRun {
     for (SlantTrack& t : slant_) {
       if (!t.logic.confirmed() || t.grouped || !t.convertible) continue;
       t.grouped = true;
-      groups_.push_back(Group{-1, {t.id}, {-1}, 0.0, {}});
+      Group& g = groups_.emplace_back();
+      g.members.push_back(t.id);
+      g.labels.push_back(-1);
     }
     for (Group& g : groups_) label_feasibly(g);
     merge_groups();
-#ifdef MPTF_DEBUG
-    std::fprintf(stderr, "scan %d slant %zu groups %zu\n", k, slant_.size(), groups_.size());
-    for (const Group& g : groups_) {
-      std::fprintf(stderr, "  out %d chi2 %.2f g %.1f th %.4f :", g.output, g.chi2, g.fused.mean[0], g.fused.mean[2]);
-      for (std::size_t i = 0; i < g.members.size(); ++i) {
-        const SlantTrack& t = slant_[position_[g.members[i]]];
-        std::fprintf(stderr, " [%d/%d r%.1f z%.4f]", g.members[i], g.labels[i], t.current.mean[0], t.current.mean[2]);
-      }
-      std::fprintf(stderr, "\n");
-    }
-#endif
     for (Group& g : groups_) {
       if (g.output < 0) {
         g.output = static_cast<int>(outputs_.size());
