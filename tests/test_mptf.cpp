@@ -240,6 +240,48 @@ TEST_CASE("mptf: without clutter and with pd = 1 every OTHR target gets one accu
   }
 }
 
+TEST_CASE("mptf: tracks end miss_limit scans after the last detection, 3 or 5 by clutter", "[mptf]") {
+  // One target (Table III target 1), noiseless detections on paths EE, FE, FF at scans 0..9,
+  // nothing afterwards. Its three slant tracks pair at scan 1, confirm at scan 2 (1/3) and
+  // form a confirmed fused track back-filled to scan 0; after the last detection they coast
+  // and are deleted at the miss_limit-th empty scan, so the fused track's last scan is
+  // 9 + miss_limit − 1. N_c only sets the clutter density and the default miss_limit.
+  auto sample = othr_sample({{"pd", "1"}, {"clutter", "0"}, {"scans", "16"}, {"process_psd", "0"}}, 0);
+  dabench::TrackingProblem& problem = sample.problem;
+  const Eigen::MatrixXd truth = sample.truth.targets[0].states;
+  for (int k = 0; k < problem.scan_count(); ++k) {
+    problem.scans[k].resize(3, k <= 9 ? 3 : 0);
+    if (k > 9) continue;
+    int column = 0;
+    for (int tau : {0, 2, 3}) {
+      problem.scans[k].col(column++) = dabench::othr::slant_measurement(truth.col(k), dabench::othr::kPathTable[tau]);
+    }
+  }
+  struct Case {
+    double clutter;
+    const char* spec;
+    int last_scan;
+  };
+  for (const Case& c : {Case{125.0, "mptf", 11}, Case{400.0, "mptf", 13}, Case{400.0, "mptf:deletion_misses=4", 12}}) {
+    INFO("clutter " << c.clutter << " spec " << c.spec);
+    problem.clutter_mean = c.clutter;
+    const dabench::TrackSet tracks = run_mptf(c.spec, problem);
+    int confirmed = 0;
+    for (const dabench::Track& track : tracks.tracks) {
+      if (!track.confirmed) continue;
+      ++confirmed;
+      CHECK(track.first_scan == 0);
+      CHECK(track.first_scan + track.length() - 1 == c.last_scan);
+      for (int i = 0; i < track.length() && track.first_scan + i <= 9; ++i) {
+        const int k = track.first_scan + i;
+        CHECK(std::abs(track.states(0, i) - truth(0, k)) < 1.0);     // km
+        CHECK(std::abs(track.states(2, i) - truth(2, k)) < 2e-4);    // rad
+      }
+    }
+    CHECK(confirmed == 1);
+  }
+}
+
 TEST_CASE("mptf: registry builds from a SPEC and rejects bad options", "[mptf]") {
   const auto* entry = dabench::tracker_registry().find("mptf");
   REQUIRE(entry != nullptr);
