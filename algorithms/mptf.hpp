@@ -100,8 +100,6 @@
 // Cost: gating by binary search over range-sorted measurements, fixed-size Eigen in the PDA and
 // pairing loops (no heap allocation, no virtual calls per measurement); the sensor's virtual
 // measure/jacobian are called per confirmed slant track and path each scan (conversion only).
-#include <array>
-#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
