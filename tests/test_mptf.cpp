@@ -234,7 +234,7 @@ TEST_CASE("mptf: without clutter and with pd = 1 every OTHR target gets one accu
     // Bounds from the noise (E|e| = 0.8σ for a normal error): fusing four paths' single-scan
     // measurements gives σ_g ≈ σ_r/2 = 2.5 km, E|e| = 2.0 km, which filtering must beat; in
     // bearing, one path's single scan gives σ_ϑ ≈ σ_ζ = 3 mrad, E|e| = 2.4 mrad (the EF/FE
-    // PDA bias of the header keeps MPTF near 1.3 mrad, above the four-path 1.2 mrad).
+    // PDA bias of the header keeps MPTF at about that four-path level, 1.2 mrad).
     CHECK(m.aee_range_km < 2.0);
     CHECK(m.aee_bearing_rad < 2.4e-3);
   }
