@@ -120,6 +120,9 @@ struct ScanAssociation {
   MultipathAssociation result;
 
   int pseudo_targets() const { return static_cast<int>(track.size()); }
+  int column_of(int measurement) const {  // measurement must be gated by some pseudo-target
+    return static_cast<int>(std::lower_bound(columns.begin(), columns.end(), measurement) - columns.begin());
+  }
 };
 
 class Run {
@@ -273,7 +276,7 @@ void Run::build_evidence(int k, ScanAssociation& scan, const std::vector<PathPre
       constant -= 0.5 * (r_llt.solve(pr.jacobian * x.covariance * pr.jacobian.transpose())).trace();
     }
     for (int j : scan.gate[p]) {
-      const int c = static_cast<int>(std::lower_bound(scan.columns.begin(), scan.columns.end(), j) - scan.columns.begin());
+      const int c = scan.column_of(j);
       const Vector d = measurements.col(j) - pr.predicted;
       e.detection(p, c) = constant - 0.5 * d.dot(cov_llt.solve(d));
     }
@@ -298,7 +301,7 @@ bool synthetic_measurement(const ScanAssociation& scan, const Eigen::MatrixXd& m
   double mass = 0.0;
   Vector weighted = Vector::Zero(measurements.rows());
   for (int j : scan.gate[p]) {
-    const int c = static_cast<int>(std::lower_bound(scan.columns.begin(), scan.columns.end(), j) - scan.columns.begin());
+    const int c = scan.column_of(j);
     const double w = scan.result.detection(p, c);
     mass += w;
     weighted += w * measurements.col(j);
@@ -514,7 +517,7 @@ double Run::bethe_entropy(const ScanAssociation& scan) const {
   for (int c = 0; c < static_cast<int>(scan.columns.size()); ++c) h -= xlogx(r.clutter[c]);
   for (int p = 0; p < scan.pseudo_targets(); ++p)
     for (int j : scan.gate[p]) {
-      const int c = static_cast<int>(std::lower_bound(scan.columns.begin(), scan.columns.end(), j) - scan.columns.begin());
+      const int c = scan.column_of(j);
       const double b = r.detection(p, c);
       h -= 2.0 * xlogx(b);                  // in its row and in its column
       h += xlogx(b) + xlogx(1.0 - b);       // minus its binary entropy
@@ -547,7 +550,7 @@ double Run::track_kinematic_terms(int track, const std::vector<Gaussian>& margin
       const double constant = -0.5 * (static_cast<double>(predicted.size()) * kLog2Pi + log_det(r) +
                                       r.solve(h * x.covariance * h.transpose()).trace());
       for (int j : scan.gate[p]) {
-        const int c = static_cast<int>(std::lower_bound(scan.columns.begin(), scan.columns.end(), j) - scan.columns.begin());
+        const int c = scan.column_of(j);
         const Vector d = problem_.scans[k].col(j) - predicted;
         b += scan.result.detection(p, c) * (constant - 0.5 * d.dot(r.solve(d)));
       }
