@@ -13,7 +13,7 @@
 //   algorithm = bp                    # one line per algorithm SPEC (variants allowed)
 //   algorithm = bp:delta=1e-6
 //   iterations = true                 # tracking only: also write iterations.csv, the metrics
-//                                     #   of each recorded VB iteration (default false)
+//                                     #   of each recorded tracker iteration (default false)
 //
 //   [scenario]                        # fixed scenario parameters (others keep defaults)
 //   rows = 2
