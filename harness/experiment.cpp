@@ -191,9 +191,17 @@ Experiment load_experiment(const std::string& path) {
       experiment.references.push_back(value);
     } else if (key == "algorithm") {
       experiment.algorithms.push_back(value);
+    } else if (key == "iterations") {
+      if (value == "true" || value == "1" || value == "yes") {
+        experiment.record_iterations = true;
+      } else if (value == "false" || value == "0" || value == "no") {
+        experiment.record_iterations = false;
+      } else {
+        throw bad("iterations must be true or false");
+      }
     } else {
       throw InputError(fmt::format("{}: unknown key '{}' (known: name, description, scenario, trials, seed, "
-                                   "output, reference, algorithm, [scenario], [sweep...])", path, key));
+                                   "output, reference, algorithm, iterations, [scenario], [sweep...])", path, key));
     }
   }
   if (experiment.scenario.empty()) throw InputError(fmt::format("{}: missing 'scenario = NAME'", path));

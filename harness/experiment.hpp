@@ -12,6 +12,8 @@
 //                                     #   were skipped (e.g. a work limit)
 //   algorithm = bp                    # one line per algorithm SPEC (variants allowed)
 //   algorithm = bp:delta=1e-6
+//   iterations = true                 # tracking only: also write iterations.csv, the metrics
+//                                     #   of each recorded tracker iteration (default false)
 //
 //   [scenario]                        # fixed scenario parameters (others keep defaults)
 //   rows = 2
@@ -41,6 +43,7 @@ struct Experiment {
   std::string output;
   std::vector<std::string> references;  // first that succeeds in a trial is the reference
   std::vector<std::string> algorithms;
+  bool record_iterations = false;       // `iterations = true`: per-iteration metrics (tracking)
   std::vector<std::string> swept_keys;         // parameters that some block sweeps
   std::vector<std::vector<KeyValue>> points;   // scenario settings of each point (fixed + swept)
 };

@@ -75,10 +75,18 @@ std::vector<ItemFile> RunPlan::item_files() const {
   const std::string point = point_columns(point_params.front());
   switch (kind) {
     case RunKind::multi_scan: return {{"targets.csv", point + ",trial,seed,algorithm,target,hpd,entropy\n"}};
-    case RunKind::tracking:
-      return {{"tracks.csv", point + ",trial,algorithm,track,confirmed,scan,g,g_dot,theta,theta_dot,"
-                                     "var_g,var_g_dot,var_theta,var_theta_dot\n"},
-              {"measurements.csv", point + ",trial,scan,r,r_dot,azimuth,origin_target,origin_path\n"}};
+    case RunKind::tracking: {
+      std::vector<ItemFile> files = {
+          {"tracks.csv", point + ",trial,algorithm,track,confirmed,scan,g,g_dot,theta,theta_dot,"
+                                 "var_g,var_g_dot,var_theta,var_theta_dot\n"},
+          {"measurements.csv", point + ",trial,scan,r,r_dot,azimuth,origin_target,origin_path\n"}};
+      if (experiment.record_iterations) {
+        std::string header = point + ",trial,seed,algorithm,iteration";
+        for (const std::string& metric : tracking_iteration_metric_columns()) header += "," + metric;
+        files.push_back({"iterations.csv", header + "\n"});
+      }
+      return files;
+    }
     case RunKind::single_scan: break;
   }
   return {};
@@ -102,6 +110,7 @@ std::string RunPlan::fingerprint() const {
   for (const auto& spec : specs) mix(spec);
   mix(std::to_string(trials));
   mix(std::to_string(seed));
+  if (experiment.record_iterations) mix("iterations");  // runs without it keep their fingerprint
   return fmt::format("{:016x}", hash);
 }
 
@@ -152,6 +161,10 @@ RunPlan make_run_plan(const RunOptions& options) {
     throw InputError(fmt::format("{}: unknown scenario '{}' (known: {})", path, experiment.scenario, known));
   }
   plan.kind = multi_scan != nullptr ? RunKind::multi_scan : tracking != nullptr ? RunKind::tracking : RunKind::single_scan;
+  if (experiment.record_iterations && plan.kind != RunKind::tracking) {
+    throw InputError(fmt::format("{}: 'iterations = true' records tracker iterations, but scenario '{}' is {} "
+                                 "(remove the line)", path, experiment.scenario, kind_name(plan.kind)));
+  }
   if (plan.kind != RunKind::single_scan && !experiment.references.empty()) {
     throw InputError(fmt::format("{}: scenario '{}' is {}: its metrics are against the truth, so "
                                  "'reference' lines are not used (remove them)", path, experiment.scenario,

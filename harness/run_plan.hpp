@@ -4,7 +4,8 @@
 // run: a single-scan scenario runs single-scan algorithms against a reference; a multi-scan
 // scenario runs multi-scan algorithms, measured against the scenario's truth (no reference),
 // and also writes targets.csv (one row per target); a tracking scenario runs trackers against
-// the truth and also writes tracks.csv and measurements.csv (harness/tracking_execution.hpp).
+// the truth and also writes tracks.csv and measurements.csv (harness/tracking_execution.hpp),
+// and iterations.csv when the experiment says `iterations = true` (an error for other kinds).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -39,7 +40,8 @@ struct RunPlan {
   const std::vector<std::string>& metric_columns() const;  // of trials.csv, by kind
   std::string trials_header() const;
   // The per-item files of this kind, in the order the writer fills them (before trials.csv):
-  // multi-scan: targets.csv; tracking: tracks.csv, measurements.csv.
+  // multi-scan: targets.csv; tracking: tracks.csv, measurements.csv and, with
+  // `iterations = true`, iterations.csv.
   std::vector<ItemFile> item_files() const;
   std::string fingerprint() const;  // identifies the run for --resume
   // The leading fields of every row, precomputed once per run: "point,param values" per point,

@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cmath>
 #include <ctime>
+#include <filesystem>
 #include <memory>
 
 #include <fmt/format.h>
@@ -45,6 +46,13 @@ const std::vector<std::string>& tracking_metric_columns() {
   static const std::vector<std::string> columns = {
       "nvt",          "tpd",          "nft",      "false_tracks", "ghost_tracks", "broken_targets", "ttl_scans",
       "aee_range_km", "aee_bearing_mrad", "mospa_km", "tet_s",        "iterations",   "converged",      "free_energy"};
+  return columns;
+}
+
+const std::vector<std::string>& tracking_iteration_metric_columns() {
+  static const std::vector<std::string> columns = {"nvt",          "tpd",          "nft",          "false_tracks",
+                                                   "ghost_tracks", "broken_targets", "ttl_scans", "aee_range_km",
+                                                   "aee_bearing_mrad", "mospa_km", "free_energy"};
   return columns;
 }
 
@@ -241,6 +249,7 @@ std::string meta_json(const RunPlan& plan, const RunOptions& options, const std:
       .add("wall_seconds", wall_seconds)
       .add("work_fraction", work_fraction);
   if (plan.kind == RunKind::tracking) meta.add_raw("tracking_metrics", tracking_metrics_json(TrackingMetricsOptions{}));
+  if (plan.experiment.record_iterations) meta.add("record_iterations", true);
   return meta.str();
 }
 
@@ -251,6 +260,11 @@ RunOutcome run_experiment(const RunOptions& options) {
   const std::string started = utc_now();
   OpenedTrials opened = open_trials_file(plan, options.resume, options.force,
                                          meta_json(plan, options, started, "running", 0, 0.0, std::nan(""), false));
+  if (!opened.resumed && !plan.experiment.record_iterations) {
+    // A fresh run without `iterations = true` leaves no iterations.csv of an earlier run.
+    std::error_code ignored;
+    std::filesystem::remove(std::filesystem::path(plan.output) / "iterations.csv", ignored);
+  }
   std::vector<std::FILE*> files;
   for (const ItemFile& file : plan.item_files()) files.push_back(open_item_file(plan, file, opened.items_done, opened.resumed));
   files.push_back(opened.file);  // trials.csv last: the item files never hold fewer items

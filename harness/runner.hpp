@@ -1,7 +1,8 @@
 #pragma once
 // `dabench run`: turns an experiment into work items (point, trial), runs them on OpenMP
 // threads, and writes trials.csv (in item order, as items finish), the kind's per-item files
-// (multi-scan: targets.csv; tracking: tracks.csv, measurements.csv), summary.csv and meta.json.
+// (multi-scan: targets.csv; tracking: tracks.csv, measurements.csv, and iterations.csv when
+// the experiment records iterations), summary.csv and meta.json.
 //
 // Every item draws its scenario from its own counter-based stream (seed, point, trial) and
 // runs the reference and every algorithm on that same draw, so rows are bit-identical (timings
@@ -42,5 +43,8 @@ RunOutcome run_experiment(const RunOptions& options);
 const std::vector<std::string>& single_scan_metric_columns();
 const std::vector<std::string>& multi_scan_metric_columns();
 const std::vector<std::string>& tracking_metric_columns();
+// Of iterations.csv (tracking runs with `iterations = true`): tracking_metric_columns() up to
+// mospa_km, then free_energy (the recorded track set's objective).
+const std::vector<std::string>& tracking_iteration_metric_columns();
 
 }  // namespace dabench

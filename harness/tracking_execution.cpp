@@ -43,6 +43,14 @@ std::string one_line(std::string_view reason) {
 
 std::string failure(std::string_view what) { return "failed:" + one_line(what); }
 
+// The metric columns shared by trials.csv and iterations.csv, nvt .. mospa_km.
+void append_metrics(std::string& row, const TrackingMetrics& m) {
+  for (const double value : {m.nvt, m.tpd, m.nft, m.false_tracks, m.ghost_tracks, m.broken_targets, m.ttl_scans,
+                             m.aee_range_km, 1e3 * m.aee_bearing_rad, m.mospa_km}) {
+    append_number(row, value);
+  }
+}
+
 // Why `tracks` cannot be written or scored against a run of `scans` scans; "" if they can.
 std::string tracks_error(const TrackSet& tracks, int scans) {
   for (const Track& track : tracks.tracks) {
@@ -86,7 +94,8 @@ TrackingExecution::TrackingExecution(const RunPlan& plan, std::vector<std::uniqu
       scenarios_(std::move(scenarios)),
       metrics_(metrics),
       point_prefix_(plan.point_row_prefixes()),
-      spec_field_(plan.spec_fields()) {
+      spec_field_(plan.spec_fields()),
+      record_iterations_(plan.experiment.record_iterations) {
   metrics_.validate();
 }
 
@@ -97,8 +106,33 @@ TrackingWorker TrackingExecution::make_worker() const {
   worker.reports.resize(plan_.specs.size());
   worker.metrics.resize(plan_.specs.size());
   worker.tet_s.resize(plan_.specs.size());
-  worker.texts.resize(3);
+  if (record_iterations_) {
+    worker.histories.resize(plan_.specs.size());
+    worker.iteration_metrics.resize(plan_.specs.size());
+  }
+  worker.texts.resize(record_iterations_ ? 4 : 3);
   return worker;
+}
+
+void TrackingExecution::score_history(TrackingWorker& worker, std::size_t a, const TrackingTruth& scored,
+                                      int scans) const {
+  std::vector<TrackingMetrics>& out = worker.iteration_metrics[a];
+  for (std::size_t r = 0; r < worker.histories[a].size(); ++r) {
+    const TrackSet& tracks = worker.histories[a][r];
+    std::string error = tracks_error(tracks, scans);
+    if (error.empty()) {
+      try {
+        out.push_back(compute_tracking_metrics(scored, tracks, metrics_));
+      } catch (const InputError& what) {
+        error = what.what();
+      }
+    }
+    if (!error.empty()) {  // a tracker bug: the whole run is marked, not only its history
+      worker.reports[a].skipped = failure(fmt::format("iteration {}: {}", r, error));
+      out.clear();
+      return;
+    }
+  }
 }
 
 void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
@@ -119,6 +153,11 @@ void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
     TrackSet& tracks = worker.tracks[a];
     report.reset();
     tracks.tracks.clear();
+    if (record_iterations_) {
+      worker.histories[a].clear();
+      worker.iteration_metrics[a].clear();
+      worker.trackers[a]->record_iterations(&worker.histories[a]);
+    }
     const auto t0 = Clock::now();
     try {
       worker.trackers[a]->run(problem, tracks, report);
@@ -138,13 +177,15 @@ void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
       worker.metrics[a] = compute_tracking_metrics(scored, tracks, metrics_);
     } catch (const InputError& error) {
       report.skipped = failure(error.what());
+      continue;
     }
+    if (record_iterations_) score_history(worker, a, scored, scans);
   }
   worker.busy_seconds += std::chrono::duration<double>(Clock::now() - start).count();
 
   std::string& track_rows = worker.texts[0];
   std::string& measurement_rows = worker.texts[1];
-  std::string& trial_rows = worker.texts[2];
+  std::string& trial_rows = worker.texts.back();
   const std::string& prefix = point_prefix_[point];
   for (std::size_t i = 0; i < truth.targets.size(); ++i) {
     const TrackingTruth::Target& target = truth.targets[i];
@@ -181,16 +222,28 @@ void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
     }
   }
 
+  if (record_iterations_) {
+    std::string& iteration_rows = worker.texts[2];
+    for (std::size_t a = 0; a < count; ++a) {
+      if (!worker.reports[a].skipped.empty()) continue;
+      const std::vector<TrackingMetrics>& history = worker.iteration_metrics[a];
+      for (std::size_t r = 0; r < history.size(); ++r) {
+        fmt::format_to(std::back_inserter(iteration_rows), "{},{},{},{},{}", prefix, trial, plan_.seed, spec_field_[a],
+                       r);
+        append_metrics(iteration_rows, history[r]);
+        append_number(iteration_rows, worker.histories[a][r].objective);
+        iteration_rows += '\n';
+      }
+    }
+  }
+
   for (std::size_t a = 0; a < count; ++a) {
     const SolveReport& report = worker.reports[a];
     const bool ok = report.skipped.empty();
     const TrackingMetrics m = ok ? worker.metrics[a] : kMissing;
     fmt::format_to(std::back_inserter(trial_rows), "{},{},{},{},", prefix, trial, plan_.seed, spec_field_[a]);
     append_status(trial_rows, report);
-    for (const double value : {m.nvt, m.tpd, m.nft, m.false_tracks, m.ghost_tracks, m.broken_targets, m.ttl_scans,
-                               m.aee_range_km, 1e3 * m.aee_bearing_rad, m.mospa_km}) {
-      append_number(trial_rows, value);
-    }
+    append_metrics(trial_rows, m);
     append_number(trial_rows, worker.tet_s[a]);
     append_number(trial_rows, ok ? report.iterations : kNaN);
     append_number(trial_rows, ok ? (report.converged ? 1.0 : 0.0) : kNaN);

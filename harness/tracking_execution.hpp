@@ -12,6 +12,15 @@
 //    the scans where the target is alive, variances empty), then per tracker that ran, per
 //    track in its order, per scan of the track: g, g_dot, theta, theta_dot and the covariance
 //    diagonal var_* (rows 0..3 of the state: [g, ġ, ϑ, ϑ̇], the layout the metrics assume);
+//  - iterations.csv (only with the experiment's `iterations = true`): each tracker's
+//    record_iterations() history is collected during its call and, when the tracker's status
+//    is ok, scored like its final tracks: one row per recorded track set r = 0, 1, ... with
+//    the point's prefix, trial, seed, algorithm, iteration r, the metric columns nvt ..
+//    mospa_km of trials.csv and free_energy (the set's TrackSet::objective, empty when NaN:
+//    jdt-vb's B after iteration r). A tracker that records nothing (or did not run) has no rows; a
+//    recorded set that does not fit the run marks the tracker failed:iteration r: <why>.
+//    Recording happens inside the timed call, so with the switch on tet_s includes it (one
+//    copy of the track set per iteration, small beside an iteration's work);
 //  - measurements.csv: trial 0 of each point only (Fig. 5 needs one run; all 100 runs would
 //    take ~100 MB per point at N_c = 400): per scan, per measurement in the scan's order, r,
 //    r_dot, azimuth and its origin (target number 1.., path τ 1.. as in Table II; −1 and −1
@@ -41,8 +50,11 @@ struct TrackingWorker {
   std::vector<SolveReport> reports;
   std::vector<TrackingMetrics> metrics;
   std::vector<double> tet_s;
+  std::vector<std::vector<TrackSet>> histories;                // per tracker, when recording
+  std::vector<std::vector<TrackingMetrics>> iteration_metrics;  // per tracker, per recorded r
   TrackingScenarioSample sample;
-  std::vector<std::string> texts;  // rows for {tracks.csv, measurements.csv, trials.csv}
+  // rows for {tracks.csv, measurements.csv, [iterations.csv,] trials.csv}
+  std::vector<std::string> texts;
   double busy_seconds = 0.0;
 };
 
@@ -54,11 +66,16 @@ class TrackingExecution {
   void run_item(TrackingWorker& worker, long long item) const;
 
  private:
+  // Scores tracker a's recorded track sets into worker.iteration_metrics[a]; one that does not
+  // fit the run marks the tracker failed:iteration r: <why>.
+  void score_history(TrackingWorker& worker, std::size_t a, const TrackingTruth& scored, int scans) const;
+
   const RunPlan& plan_;
   std::vector<std::unique_ptr<TrackingScenario>> scenarios_;
   TrackingMetricsOptions metrics_;
   std::vector<std::string> point_prefix_;  // "point,param values" per point
   std::vector<std::string> spec_field_;    // CSV-quoted SPEC per tracker
+  bool record_iterations_ = false;         // the experiment's `iterations = true`
 };
 
 // The metric options as a one-line JSON object, for meta.json (key "tracking_metrics").
