@@ -312,7 +312,8 @@ bool synthetic_measurement(const ScanAssociation& scan, const Eigen::MatrixXd& m
   return true;
 }
 
-// Sequential pass: one UKF update of a track with the synthetic measurements of all its paths.
+// One UKF update with the synthetic measurements (eq 36) of all of a track's paths at scan k,
+// stacked (the sequential pass, and each step of joint_smoother).
 void Run::ukf_update(Gaussian& x, const ScanAssociation& scan, int first_pseudo, int k) const {
   std::vector<int> used;
   std::vector<ScanMeasurement> synthetic;

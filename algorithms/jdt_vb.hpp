@@ -63,6 +63,8 @@
 // Cov(x_k, x_{k+1}) = G_k P_{k+1}, G_k = P_k Fᵀ (F P_k Fᵀ + Q)⁻¹ (independent steps where
 // that coupling is not positive definite). The χ of eq (43) has −log(λV_k) in every detection
 // and −log V_k in every clutter term; both cancel in E[a] and in B, so V_k only scales χ.
+// Edge cases: p_d p_g is capped at 1 − 10⁻⁹ and a problem without clutter is treated as having
+// 10⁻⁶ expected clutter measurements per scan, so that every χ is finite.
 #include <string>
 #include <string_view>
 #include <vector>
