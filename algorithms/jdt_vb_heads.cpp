@@ -167,36 +167,37 @@ std::vector<TrackHead> form_track_heads(const Eigen::MatrixXd& scan, const std::
   const int paths = sensor.paths();
   std::vector<int> pool = candidates;
   std::sort(pool.begin(), pool.end(), [&](int a, int b) { return scan(0, a) < scan(0, b) || (scan(0, a) == scan(0, b) && a < b); });
+  std::vector<char> leaves(scan.cols(), 0);  // per measurement: taken out of the pool
   while (!pool.empty()) {
     const std::vector<int> group = group_from_first(scan, pool, options.threshold, 2 * paths);
-    std::vector<std::vector<Mapped>> mapped(group.size(), std::vector<Mapped>(paths));
-    for (std::size_t j = 0; j < group.size(); ++j) {
-      for (int tau = 0; tau < paths; ++tau) {
-        Mapped& m = mapped[j][tau];
-        m.valid = sensor.invert(tau, scan.col(group[j]), m.state);
-        if (!m.valid) continue;
-        const Eigen::MatrixXd h = sensor.jacobian(tau, m.state);
-        m.information = h.transpose() * sensor.noise_covariance(tau).llt().solve(h);
+    bool started = false;
+    if (group.size() >= 2) {  // a lone seed can start nothing: skip mapping it to the ground
+      std::vector<std::vector<Mapped>> mapped(group.size(), std::vector<Mapped>(paths));
+      for (std::size_t j = 0; j < group.size(); ++j) {
+        for (int tau = 0; tau < paths; ++tau) {
+          Mapped& m = mapped[j][tau];
+          m.valid = sensor.invert(tau, scan.col(group[j]), m.state);
+          if (!m.valid) continue;
+          const Eigen::MatrixXd h = sensor.jacobian(tau, m.state);
+          m.information = h.transpose() * sensor.noise_covariance(tau).llt().solve(h);
+        }
+      }
+      HypothesisSearch search(mapped, options.prior_precision, options.gate);
+      const Hypothesis best = search.best(std::vector<char>(group.size(), 1));
+      if (best.members >= 2) {
+        started = true;
+        std::vector<char> members(group.size(), 0);
+        for (std::size_t j = 0; j < group.size(); ++j) members[j] = best.path_of[j] >= 0;
+        std::vector<Hypothesis> kept;
+        for (Hypothesis& h : search.all_using(members))
+          if (distinct(h, kept, options.gate)) kept.push_back(std::move(h));
+        for (const Hypothesis& h : kept) heads.push_back(make_head(h, group, paths));
+        for (std::size_t j = 0; j < group.size(); ++j)
+          if (members[j]) leaves[group[j]] = 1;
       }
     }
-    HypothesisSearch search(mapped, options.prior_precision, options.gate);
-    const Hypothesis best = search.best(std::vector<char>(group.size(), 1));
-    std::vector<int> used;
-    if (best.members >= 2) {
-      std::vector<char> members(group.size(), 0);
-      for (std::size_t j = 0; j < group.size(); ++j) members[j] = best.path_of[j] >= 0;
-      std::vector<Hypothesis> kept;
-      for (Hypothesis& h : search.all_using(members))
-        if (distinct(h, kept, options.gate)) kept.push_back(std::move(h));
-      for (const Hypothesis& h : kept) heads.push_back(make_head(h, group, paths));
-      for (std::size_t j = 0; j < group.size(); ++j)
-        if (members[j]) used.push_back(group[j]);
-    } else {
-      used.push_back(group[0]);  // the seed starts no head; its neighbours may with others
-    }
-    pool.erase(std::remove_if(pool.begin(), pool.end(),
-                              [&](int j) { return std::find(used.begin(), used.end(), j) != used.end(); }),
-               pool.end());
+    if (!started) leaves[group[0]] = 1;  // the seed starts no head; its neighbours may with others
+    pool.erase(std::remove_if(pool.begin(), pool.end(), [&](int j) { return leaves[j] != 0; }), pool.end());
   }
   return heads;
 }
