@@ -30,13 +30,11 @@
 //     predictive likelihood N(y | h^τ(x̂⁻), S) (the exact single-scan association given the
 //     prediction — eq (43) with R assumes a converged q(x)); each track takes a UKF update
 //     with its paths' synthetic measurements and a forward step of its meta-state chain
-//     (eq 39 evidence). Measurements outside every live track's gate are grouped into
-//     subsets whose members are pairwise within ρ = [80 km, 0.005 km/s, 0.03 rad] (greedy, in
-//     range order, at most N_P members); each subset of ≥ 2 starts a track: for every
-//     assignment of distinct paths to its members each member is mapped to the ground
-//     (MultipathMeasurementModel::invert) with its linearised information HᵀR⁻¹H, the states
-//     are fused, and the assignment with the least mean Mahalanobis distance of its members
-//     to the fused state is kept; p(s = 1) = min(1, (|Y|/N_P)²) (algorithms/jdt_vb_heads.hpp).
+//     (eq 39 evidence). Measurements outside every live track's gate start new tracks
+//     (algorithms/jdt_vb_heads.hpp): groups pairwise within ρ = [80 km, 0.005 km/s, 0.03 rad],
+//     within a group the path assignment of the most members whose ground states agree (least
+//     mean Mahalanobis distance), every path-shifted reading of those members that fits as
+//     well, p(s = 1) = min(1, (|Y|/N_P)²).
 //     Deletion: the text deletes a track when "the average detection probability in three
 //     successive scans is less than δ_s". Read as the mean of the filtered q(s_k = 1), with
 //     δ_s = 0.85 a single scan without detections on any path (q drops to ≈ 0.4; 13 % of scans
@@ -49,8 +47,9 @@
 //     (gates grow), so each iteration maximises one objective on a growing set of pairs (a
 //     new pair enters with zero mass and leaves B unchanged). Modules 3 and 2 maximise B
 //     exactly (Module 3 on the Bethe approximation of H(q(A)), which is convex for this
-//     association structure); eq (32) does not, so a Module-1 update that would lower B is
-//     rejected (q(X) kept) and counted in `rejected_updates()`. B therefore never decreases.
+//     association structure); Module 1 maximises it only up to the unscented approximation
+//     (and eq (32) not at all), so a Module-1 update that would lower B is rejected (q(X)
+//     kept) and counted in `rejected_updates()`. B therefore never decreases.
 //  3. Output: per batch track, the scans from the first to the last with smoothed
 //     q(s_k = 1) ≥ δ_s, confirmed; tracks without such a scan are output whole, unconfirmed.
 //
@@ -59,9 +58,10 @@
 // the problem's region (density λ = N_c / V), up to a constant of the measurements alone:
 //   B = Σ_k [Σ_j E[a^{0,j}] log λ + Σ_{ijτ} E[a^{i,j,τ}] E log N(y_j | h^τ(x_i), R) + H_Bethe(q(A_k))]
 //     + Σ_i [E log p(s_i) + Σ_k E ξ_{i,k}(s_{i,k}) + H(q(s_i))] + Σ_i [E log p(x_i) + H(q(x_i))],
-// where q(x_i) is the Gauss–Markov chain with the fused marginals and the RTS coupling
-// Cov(x_k, x_{k+1}) = G_k P_{k+1}, G_k = P_k Fᵀ (F P_k Fᵀ + Q)⁻¹ (independent steps where
-// that coupling is not positive definite). The χ of eq (43) has −log(λV_k) in every detection
+// where q(x_i) is the Gauss–Markov chain of the smoother: its marginals and the RTS
+// cross-covariances Cov(x_k, x_{k+1}) = G_k P_{k+1|K}; for eq (32)'s fused marginals (and the
+// sequential pass's filtered ones) the coupling G_k = P_k Fᵀ (F P_k Fᵀ + Q)⁻¹ of those
+// marginals under the motion model, independent steps where that is not positive definite. The χ of eq (43) has −log(λV_k) in every detection
 // and −log V_k in every clutter term; both cancel in E[a] and in B, so V_k only scales χ.
 // Edge cases: p_d p_g is capped at 1 − 10⁻⁹ and a problem without clutter is treated as having
 // 10⁻⁶ expected clutter measurements per scan, so that every χ is finite.
