@@ -10,27 +10,13 @@
 #include "harness/csv.hpp"
 #include "harness/particle_metrics.hpp"
 #include "harness/registry.hpp"
+#include "harness/row_fields.hpp"
 
 namespace dabench {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-void append_number(std::string& row, double value) {
-  row += ',';
-  if (std::isfinite(value)) fmt::format_to(std::back_inserter(row), "{}", value);
-}
-
-void append_status(std::string& row, const SolveReport& report) {
-  if (report.skipped.empty()) {
-    row += "ok";
-  } else if (report.skipped.rfind("failed:", 0) == 0) {
-    append_csv_field(row, report.skipped);
-  } else {
-    append_csv_field(row, "skipped:" + report.skipped);
-  }
-}
 
 // The beliefs must cover the problem's tracks and hypotheses; otherwise the solver is broken.
 std::string shape_error(const MultiScanProblem& problem, const MultiScanBeliefs& beliefs) {

@@ -23,6 +23,7 @@
 #include "harness/ordered_writer.hpp"
 #include "harness/progress.hpp"
 #include "harness/registry.hpp"
+#include "harness/row_fields.hpp"
 #include "harness/run_folder.hpp"
 #include "harness/run_plan.hpp"
 #include "harness/summary.hpp"
@@ -81,11 +82,6 @@ std::string host_name() {
   return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string("unknown");
 }
 
-void append_number(std::string& row, double value) {
-  row += ',';
-  if (std::isfinite(value)) fmt::format_to(std::back_inserter(row), "{}", value);
-}
-
 // One thread's solvers and buffers, reused for every item it runs.
 struct Worker {
   std::vector<std::unique_ptr<SingleScanSolver>> solvers;
@@ -141,13 +137,7 @@ class Execution {
       std::string& row = worker.texts[0];
       fmt::format_to(std::back_inserter(row), "{},{},{},{},", point_prefix_[point], trial, plan_.seed, spec_field_[a]);
       const bool ok = report.skipped.empty();
-      if (ok) {
-        row += "ok";
-      } else if (report.skipped.rfind("failed:", 0) == 0) {
-        append_csv_field(row, report.skipped);
-      } else {
-        append_csv_field(row, "skipped:" + report.skipped);
-      }
+      append_status(row, report);
       fmt::format_to(std::back_inserter(row), ",{},{}", problem.targets(), problem.measurements());
       MarginalErrors errors{nan, nan};
       if (ok && reference < count && problem.targets() > 0) {

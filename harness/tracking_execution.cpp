@@ -9,6 +9,7 @@
 #include "harness/csv.hpp"
 #include "harness/errors.hpp"
 #include "harness/registry.hpp"
+#include "harness/row_fields.hpp"
 
 namespace dabench {
 
@@ -18,21 +19,6 @@ using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kStateColumns = 4;  // [g, ġ, ϑ, ϑ̇]
 constexpr TrackingMetrics kMissing{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
-
-void append_number(std::string& row, double value) {
-  row += ',';
-  if (std::isfinite(value)) fmt::format_to(std::back_inserter(row), "{}", value);
-}
-
-void append_status(std::string& row, const SolveReport& report) {
-  if (report.skipped.empty()) {
-    row += "ok";
-  } else if (report.skipped.rfind("failed:", 0) == 0) {
-    append_csv_field(row, report.skipped);
-  } else {
-    append_csv_field(row, "skipped:" + report.skipped);
-  }
-}
 
 // A status reason on one CSV line: resume counts lines, so no line breaks.
 std::string one_line(std::string_view reason) {
