@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tests/support/cli_runner.hpp"
+#include "tests/support/run_files.hpp"
 
 using namespace dabench::test::cli;
 namespace fs = std::filesystem;
@@ -36,6 +37,9 @@ const char* const kTiny =
     "[sweep]\n"
     "scans_per_sensor = 1, 3\n";
 constexpr int kTrials = 12;
+
+// Where item `item`'s rows start in a file of this test's runs.
+std::size_t item_offset(const std::string& text, long long item) { return offset_of_item(text, item, kTrials); }
 constexpr int kPoints = 2;
 constexpr int kSpecs = 2;
 
@@ -49,27 +53,6 @@ CliResult run_ok(const TempDir& dir, const std::vector<std::string>& args) {
 CsvTable table_without_time(const TempDir& dir, const std::string& relative) {
   REQUIRE(dir.exists(relative));
   return parse_csv(dir.read(relative)).without([](const std::string& name) { return name.rfind("time_us", 0) == 0; });
-}
-
-void check_same(const CsvTable& a, const CsvTable& b) {
-  REQUIRE(a.header == b.header);
-  REQUIRE(a.rows.size() == b.rows.size());
-  std::size_t differing = 0;
-  for (std::size_t r = 0; r < a.rows.size(); ++r) differing += a.rows[r] != b.rows[r];
-  CHECK(differing == 0);
-}
-
-// Byte offset of the first row (after the header) whose item (point·trials + trial) is >= item.
-std::size_t offset_of_item(const std::string& text, long long item) {
-  const auto lines = split_lines(text);
-  const CsvTable table = parse_csv(text);
-  const std::size_t point = table.column("point"), trial = table.column("trial");
-  std::size_t offset = lines[0].size() + 1;
-  for (std::size_t r = 0; r < table.rows.size(); ++r) {
-    if (std::stoll(table.rows[r][point]) * kTrials + std::stoll(table.rows[r][trial]) >= item) return offset;
-    offset += lines[r + 1].size() + 1;
-  }
-  return offset;
 }
 
 }  // namespace
@@ -149,13 +132,13 @@ TEST_CASE("run multi-scan: --resume after a hard kill finishes identically", "[r
   const std::size_t trials_header = trials.find('\n') + 1, targets_header = targets.find('\n') + 1;
   // (what, trials.csv length, targets.csv length); targets.csv always reaches at least as far.
   const std::vector<std::tuple<std::string, std::size_t, std::size_t>> cuts = {
-      {"both at the same item boundary", offset_of_item(trials, 5), offset_of_item(targets, 5)},
-      {"trials mid-line, targets three items further mid-line", offset_of_item(trials, 7) + 9,
-       offset_of_item(targets, 10) + 11},
-      {"trials header only, targets with rows", trials_header, offset_of_item(targets, 2)},
+      {"both at the same item boundary", item_offset(trials, 5), item_offset(targets, 5)},
+      {"trials mid-line, targets three items further mid-line", item_offset(trials, 7) + 9,
+       item_offset(targets, 10) + 11},
+      {"trials header only, targets with rows", trials_header, item_offset(targets, 2)},
       {"targets header only", trials_header, targets_header},
-      {"trials cut, targets complete", offset_of_item(trials, 13) + 4, targets.size()},
-      {"second point, block boundary", offset_of_item(trials, 16), offset_of_item(targets, 16) + 3},
+      {"trials cut, targets complete", item_offset(trials, 13) + 4, targets.size()},
+      {"second point, block boundary", item_offset(trials, 16), item_offset(targets, 16) + 3},
   };
   for (const auto& [what, trials_length, targets_length] : cuts) {
     DYNAMIC_SECTION("cut: " << what) {

@@ -23,6 +23,7 @@
 #include "harness/registry.hpp"
 #include "harness/runner.hpp"
 #include "tests/support/cli_runner.hpp"
+#include "tests/support/run_files.hpp"
 
 using namespace dabench::test::cli;
 using dabench::SolveReport;
@@ -221,29 +222,11 @@ DABENCH_REGISTER_TRACKER(FirstMeasurementTracker);
 
 // ---- helpers ------------------------------------------------------------------------------
 
-dabench::RunOutcome run_in(const TempDir& dir, const std::string& ini, const std::string& out, int threads,
-                           bool resume = false) {
-  dabench::RunOptions options;
-  options.experiment_path = (dir.work() / ini).string();
-  options.output = (dir.work() / out).string();
-  options.threads = threads;
-  options.resume = resume;
-  return dabench::run_experiment(options);
-}
-
 bool is_time_column(const std::string& name) { return name.rfind("tet_s", 0) == 0; }
 
 CsvTable without_time(const TempDir& dir, const std::string& relative) {
   REQUIRE(dir.exists(relative));
   return parse_csv(dir.read(relative)).without(is_time_column);
-}
-
-void check_same(const CsvTable& a, const CsvTable& b) {
-  REQUIRE(a.header == b.header);
-  REQUIRE(a.rows.size() == b.rows.size());
-  std::size_t differing = 0;
-  for (std::size_t r = 0; r < a.rows.size(); ++r) differing += a.rows[r] != b.rows[r];
-  CHECK(differing == 0);
 }
 
 // Rows of `table` whose column `key` equals `value`.
@@ -253,10 +236,6 @@ std::vector<std::size_t> rows_where(const CsvTable& table, const std::string& ke
     if (table.at(r, key) == value) rows.push_back(r);
   }
   return rows;
-}
-
-double number(const CsvTable& table, std::size_t row, const std::string& column) {
-  return to_double(table.at(row, column));
 }
 
 // Ground-plane distance between (g1, θ1) and (g2, θ2), law of cosines.
@@ -295,18 +274,8 @@ const char* const kOthr =
     "clutter = 5, 20\n";
 constexpr int kOthrTrials = 6;
 
-// Byte offset of the first row (after the header) whose item (point·trials + trial) is >= item.
-std::size_t offset_of_item(const std::string& text, long long item) {
-  const auto lines = split_lines(text);
-  const CsvTable table = parse_csv(text);
-  const std::size_t point = table.column("point"), trial = table.column("trial");
-  std::size_t offset = lines[0].size() + 1;
-  for (std::size_t r = 0; r < table.rows.size(); ++r) {
-    if (std::stoll(table.rows[r][point]) * kOthrTrials + std::stoll(table.rows[r][trial]) >= item) return offset;
-    offset += lines[r + 1].size() + 1;
-  }
-  return offset;
-}
+// Where item `item`'s rows start in a file of this test's runs.
+std::size_t item_offset(const std::string& text, long long item) { return offset_of_item(text, item, kOthrTrials); }
 
 }  // namespace
 
@@ -558,16 +527,16 @@ TEST_CASE("run tracking: othr, --resume after a hard kill finishes identically",
   const std::size_t measurements_header = measurements.find('\n') + 1;
   // (what, trials.csv, tracks.csv, measurements.csv lengths); item files reach at least as far.
   const std::vector<std::tuple<std::string, std::size_t, std::size_t, std::size_t>> cuts = {
-      {"all at the same item boundary", offset_of_item(trials, 5), offset_of_item(tracks, 5),
-       offset_of_item(measurements, 5)},
-      {"trials mid-line, item files further mid-line", offset_of_item(trials, 7) + 9, offset_of_item(tracks, 10) + 11,
-       offset_of_item(measurements, 13) + 7},
+      {"all at the same item boundary", item_offset(trials, 5), item_offset(tracks, 5),
+       item_offset(measurements, 5)},
+      {"trials mid-line, item files further mid-line", item_offset(trials, 7) + 9, item_offset(tracks, 10) + 11,
+       item_offset(measurements, 13) + 7},
       {"headers only", trials_header, tracks_header, measurements_header},
-      {"trials header only, item files with rows", trials_header, offset_of_item(tracks, 2),
-       offset_of_item(measurements, 7)},
-      {"trials cut, item files complete", offset_of_item(trials, 13) + 4, tracks.size(), measurements.size()},
-      {"second point, block boundary", offset_of_item(trials, 16), offset_of_item(tracks, 16) + 3,
-       offset_of_item(measurements, 16)},
+      {"trials header only, item files with rows", trials_header, item_offset(tracks, 2),
+       item_offset(measurements, 7)},
+      {"trials cut, item files complete", item_offset(trials, 13) + 4, tracks.size(), measurements.size()},
+      {"second point, block boundary", item_offset(trials, 16), item_offset(tracks, 16) + 3,
+       item_offset(measurements, 16)},
   };
   for (const auto& [what, trials_length, tracks_length, measurements_length] : cuts) {
     DYNAMIC_SECTION("cut: " << what) {

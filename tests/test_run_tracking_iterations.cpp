@@ -23,6 +23,7 @@
 #include "harness/registry.hpp"
 #include "harness/runner.hpp"
 #include "tests/support/cli_runner.hpp"
+#include "tests/support/run_files.hpp"
 
 using namespace dabench::test::cli;
 using dabench::SolveReport;
@@ -128,34 +129,11 @@ class IteratingTracker final : public dabench::Tracker {
 };
 DABENCH_REGISTER_TRACKER(IteratingTracker);
 
-dabench::RunOutcome run_in(const TempDir& dir, const std::string& ini, const std::string& out, int threads,
-                           bool resume = false, bool force = false) {
-  dabench::RunOptions options;
-  options.experiment_path = (dir.work() / ini).string();
-  options.output = (dir.work() / out).string();
-  options.threads = threads;
-  options.resume = resume;
-  options.force = force;
-  return dabench::run_experiment(options);
-}
-
 bool is_time_column(const std::string& name) { return name.rfind("tet_s", 0) == 0; }
 
 CsvTable without_time(const TempDir& dir, const std::string& relative) {
   REQUIRE(dir.exists(relative));
   return parse_csv(dir.read(relative)).without(is_time_column);
-}
-
-void check_same(const CsvTable& a, const CsvTable& b) {
-  REQUIRE(a.header == b.header);
-  REQUIRE(a.rows.size() == b.rows.size());
-  std::size_t differing = 0;
-  for (std::size_t r = 0; r < a.rows.size(); ++r) differing += a.rows[r] != b.rows[r];
-  CHECK(differing == 0);
-}
-
-double number(const CsvTable& table, std::size_t row, const std::string& column) {
-  return to_double(table.at(row, column));
 }
 
 const std::vector<std::string> kIterationMetrics = {"nvt",       "tpd",          "nft",
@@ -176,25 +154,15 @@ const char* const kConstructed =
 
 // OTHR, 10 scans, light clutter, the 2×2 grid of Table IV, 6 trials: 24 items, 3 blocks.
 constexpr int kOthrTrials = 6;
+
+// Where item `item`'s rows start in a file of this test's runs.
+std::size_t item_offset(const std::string& text, long long item) { return offset_of_item(text, item, kOthrTrials); }
 std::string othr_ini(bool iterations) {
   return std::string("scenario = othr\ntrials = 6\nseed = 5\n") + (iterations ? "iterations = true\n" : "") +
          "algorithm = test-iterating:iterations=-1,from_draw=true\n"
          "algorithm = test-iterating:record=false,from_draw=true\n"
          "algorithm = test-iterating:iterations=3,from_draw=true,far_until=1\n"
          "[scenario]\nscans = 10\n[sweep]\npd = 0.75, 0.4\nclutter = 5, 20\n";
-}
-
-// Byte offset of the first row (after the header) whose item (point·trials + trial) is >= item.
-std::size_t offset_of_item(const std::string& text, long long item) {
-  const auto lines = split_lines(text);
-  const CsvTable table = parse_csv(text);
-  const std::size_t point = table.column("point"), trial = table.column("trial");
-  std::size_t offset = lines[0].size() + 1;
-  for (std::size_t r = 0; r < table.rows.size(); ++r) {
-    if (std::stoll(table.rows[r][point]) * kOthrTrials + std::stoll(table.rows[r][trial]) >= item) return offset;
-    offset += lines[r + 1].size() + 1;
-  }
-  return offset;
 }
 
 }  // namespace
@@ -391,18 +359,18 @@ TEST_CASE("run tracking iterations: othr, --resume after a hard kill finishes id
   // files reach at least as far as trials.csv (the writer writes them first).
   using Cut = std::tuple<std::string, std::size_t, std::size_t, std::size_t, std::size_t>;
   const std::vector<Cut> cuts = {
-      {"all at the same item boundary", offset_of_item(trials, 5), offset_of_item(tracks, 5),
-       offset_of_item(measurements, 5), offset_of_item(iterations, 5)},
-      {"iterations mid-line further on", offset_of_item(trials, 7) + 9, offset_of_item(tracks, 7),
-       offset_of_item(measurements, 7), offset_of_item(iterations, 11) + 5},
+      {"all at the same item boundary", item_offset(trials, 5), item_offset(tracks, 5),
+       item_offset(measurements, 5), item_offset(iterations, 5)},
+      {"iterations mid-line further on", item_offset(trials, 7) + 9, item_offset(tracks, 7),
+       item_offset(measurements, 7), item_offset(iterations, 11) + 5},
       {"headers only", header(trials), header(tracks), header(measurements), header(iterations)},
       {"iterations header cut", header(trials), header(tracks), header(measurements), header(iterations) - 7},
-      {"trials header only, iterations with rows", header(trials), offset_of_item(tracks, 2),
-       offset_of_item(measurements, 7), offset_of_item(iterations, 9) + 2},
-      {"trials cut, iterations complete", offset_of_item(trials, 13) + 4, tracks.size(), measurements.size(),
+      {"trials header only, iterations with rows", header(trials), item_offset(tracks, 2),
+       item_offset(measurements, 7), item_offset(iterations, 9) + 2},
+      {"trials cut, iterations complete", item_offset(trials, 13) + 4, tracks.size(), measurements.size(),
        iterations.size()},
-      {"second point, block boundary", offset_of_item(trials, 16), offset_of_item(tracks, 16) + 3,
-       offset_of_item(measurements, 16), offset_of_item(iterations, 16) + 1},
+      {"second point, block boundary", item_offset(trials, 16), item_offset(tracks, 16) + 3,
+       item_offset(measurements, 16), item_offset(iterations, 16) + 1},
   };
   for (const auto& [what, trials_length, tracks_length, measurements_length, iterations_length] : cuts) {
     DYNAMIC_SECTION("cut: " << what) {
