@@ -89,3 +89,15 @@ def point_title(params, keys=("pd", "clutter")):
     """'pd = 0.75, N_c = 125' from a point's parameters."""
     names = {"pd": "$p_d$", "clutter": "$N_c$"}
     return ", ".join(f"{names.get(k, k)} = {params[k]}" for k in keys if k in params)
+
+
+def save_figure(fig, out, script):
+    """Writes OUT (PNG, 200 dpi) and the SVG beside it, and names both on stderr."""
+    svg = os.path.splitext(out)[0] + ".svg"
+    try:
+        fig.savefig(out, dpi=200)
+        fig.savefig(svg)
+    except OSError as error:
+        fail(script, f"{out}: {error.strerror}")
+    print(out, file=sys.stderr)
+    print(svg, file=sys.stderr)

@@ -29,7 +29,8 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from othr_run import PATH_NAMES, PlotError, fail, parse_where, point_title, read_point_rows, run_file  # noqa: E402
+from othr_run import (  # noqa: E402
+    PATH_NAMES, PlotError, fail, parse_where, point_title, read_point_rows, run_file, save_figure)
 
 SCRIPT = "othr_scenario.py"
 PATH_MARKERS = {1: "o", 2: "s", 3: "^", 4: "D"}
@@ -101,12 +102,7 @@ def main():
     right.grid(alpha=0.3)
     fig.suptitle(args.title or f"OTHR scenario, run 0 ({point_title(params)})")
     fig.tight_layout()
-    out = args.out or os.path.join(os.path.abspath(args.run_dir), "othr_scenario.png")
-    fig.savefig(out, dpi=200)
-    svg = os.path.splitext(out)[0] + ".svg"
-    fig.savefig(svg)
-    print(out, file=sys.stderr)
-    print(svg, file=sys.stderr)
+    save_figure(fig, args.out or os.path.join(os.path.abspath(args.run_dir), "othr_scenario.png"), SCRIPT)
 
 
 if __name__ == "__main__":

@@ -30,7 +30,7 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from othr_run import PlotError, fail, parse_where, point_title, read_point_rows, run_file  # noqa: E402
+from othr_run import PlotError, fail, parse_where, point_title, read_point_rows, run_file, save_figure  # noqa: E402
 
 SCRIPT = "othr_tracks.py"
 
@@ -101,12 +101,7 @@ def main():
         axis.grid(alpha=0.3)
     fig.suptitle(args.title or f"Tracks of run {args.trial} ({point_title(params)}); truth dashed")
     fig.tight_layout()
-    out = args.out or os.path.join(os.path.abspath(args.run_dir), "othr_tracks.png")
-    fig.savefig(out, dpi=200)
-    svg = os.path.splitext(out)[0] + ".svg"
-    fig.savefig(svg)
-    print(out, file=sys.stderr)
-    print(svg, file=sys.stderr)
+    save_figure(fig, args.out or os.path.join(os.path.abspath(args.run_dir), "othr_tracks.png"), SCRIPT)
 
 
 if __name__ == "__main__":
