@@ -37,6 +37,7 @@ PathPrediction Run::predict_path(const Gaussian& x, int path) const {
   p.jacobian = sensor_.jacobian(path, x.mean);
   const Eigen::MatrixXd s = p.jacobian * x.covariance * p.jacobian.transpose() + sensor_.noise_covariance(path);
   p.innovation.compute(0.5 * (s + s.transpose()));
+  p.first_variance = p.innovation.reconstructedMatrix()(0, 0);
   const int n = static_cast<int>(p.predicted.size());
   p.gate_volume = unit_ball_volume(n) * std::pow(gate_, 0.5 * n) * std::exp(0.5 * log_det(p.innovation));
   return p;
@@ -47,8 +48,7 @@ PathPrediction Run::predict_path(const Gaussian& x, int path) const {
 void Run::gate_measurements(int k, const PathPrediction& p, std::vector<int>& gated) const {
   const auto& scan = problem_.scans[k];
   const auto& order = order_[k];
-  const Eigen::MatrixXd s = p.innovation.reconstructedMatrix();
-  const double reach = std::sqrt(gate_ * s(0, 0));
+  const double reach = std::sqrt(gate_ * p.first_variance);
   auto lower = std::lower_bound(order.begin(), order.end(), p.predicted[0] - reach,
                                 [&](int j, double v) { return scan(0, j) < v; });
   for (auto it = lower; it != order.end() && scan(0, *it) <= p.predicted[0] + reach; ++it) {
@@ -90,8 +90,7 @@ void Run::build_evidence(int k, ScanAssociation& scan, const std::vector<PathPre
     const int path = scan.path[p];
     const double a = active[p / paths_];
     e.miss[p] = expected_log_pd(a, path, false);
-    const Eigen::MatrixXd& r = sensor_.noise_covariance(path);
-    const Eigen::LLT<Eigen::MatrixXd> r_llt(r);
+    const Eigen::LLT<Eigen::MatrixXd>& r_llt = noise_[path];
     const auto& cov_llt = predictive ? pr.innovation : r_llt;
     double constant = expected_log_pd(a, path, true) - log_clutter_density_ - log_volume -
                       0.5 * (static_cast<double>(pr.predicted.size()) * kLog2Pi + log_det(cov_llt));

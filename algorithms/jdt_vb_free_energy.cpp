@@ -40,7 +40,7 @@ double Run::track_kinematic_terms(int track, const std::vector<Gaussian>& margin
     for (int tau = 0; tau < paths_; ++tau) {
       const int p = first_pseudo + tau;
       if (scan.gate[p].empty()) continue;
-      const Eigen::LLT<Eigen::MatrixXd> r(sensor_.noise_covariance(tau));
+      const Eigen::LLT<Eigen::MatrixXd>& r = noise_[tau];
       const Vector predicted = sensor_.measure(tau, x.mean);
       const Eigen::MatrixXd h = sensor_.jacobian(tau, x.mean);
       const double constant = -0.5 * (static_cast<double>(predicted.size()) * kLog2Pi + log_det(r) +

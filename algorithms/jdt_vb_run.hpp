@@ -61,6 +61,7 @@ struct PathPrediction {
   Vector predicted;                  // h^τ(x̂)
   Eigen::MatrixXd jacobian;          // H
   Eigen::LLT<Eigen::MatrixXd> innovation;  // S = H P Hᵀ + R
+  double first_variance = 0.0;       // S₀₀: the gate's half-width along the first component is √(γ S₀₀)
   double gate_volume = 0.0;          // eq (34)
 };
 
@@ -100,6 +101,7 @@ class Run {
     head_options_.gate = gate_;
     head_options_.prior_precision = Vector::Constant(n, 1e-6);
     if (n == 4) head_options_.prior_precision << 1e-6, 1.0, 1.0, 1.0 / (o_.head_bearing_rate_sd * o_.head_bearing_rate_sd);
+    for (int tau = 0; tau < paths_; ++tau) noise_.emplace_back(sensor_.noise_covariance(tau));
     transition_ = problem.transition;
     process_ = Eigen::LLT<Eigen::MatrixXd>(problem.process_covariance);
   }
@@ -152,6 +154,7 @@ class Run {
   const double log_clutter_density_;
   std::vector<std::vector<int>> order_;  // per scan: measurements by increasing first component
   TrackHeadOptions head_options_;
+  std::vector<Eigen::LLT<Eigen::MatrixXd>> noise_;  // per path: Cholesky factor of R^τ
   Eigen::MatrixXd transition_;
   Eigen::LLT<Eigen::MatrixXd> process_;
   std::vector<TrackRecord> tracks_;       // every track of the sequential pass
