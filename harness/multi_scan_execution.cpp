@@ -111,6 +111,9 @@ void MultiScanExecution::run_item(MultiScanWorker& worker, long long item) const
     append_number(trials, worker.time_us[a]);
     append_number(trials, ok ? report.iterations : nan);
     append_number(trials, ok ? (report.converged ? 1.0 : 0.0) : nan);
+    append_number(trials, ok && report.line_search_steps >= 0 ? report.line_search_steps : nan);
+    append_number(trials, ok ? report.residual : nan);
+    append_number(trials, ok ? report.inner_residual : nan);
     trials += '\n';
   }
 }

@@ -2,7 +2,8 @@
 // One (point, trial) work item of a multi-scan run: draw the scenario from the item's own
 // stream, run every multi-scan algorithm on that same draw, and format its rows of trials.csv
 // (one per algorithm: n_targets, n_scans, n_measurements, mean_hpd, max_hpd, mean_entropy,
-// time_us, iterations, converged) and targets.csv (one per algorithm and target: hpd, entropy;
+// time_us, iterations, converged, line_search_steps, residual, inner_residual — the last three
+// empty for methods that do not report them) and targets.csv (one per algorithm and target: hpd, entropy;
 // empty when the algorithm did not solve). Metrics are against the scenario's truth
 // (harness/particle_metrics.hpp). A draw without targets is skipped:no_targets for every
 // algorithm (there is nothing to associate or measure).

@@ -1,11 +1,13 @@
 #include "harness/params.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace dabench {
 
@@ -71,6 +73,12 @@ void ParamList::assign(std::string_view key, std::string_view value, std::string
   const auto bad = [&](std::string_view expected) {
     return InputError(fmt::format("{}: parameter '{}' = '{}' is not {}", owner, key, value, expected));
   };
+  if (!entry->choices.empty()) {
+    const auto found = std::find(entry->choices.begin(), entry->choices.end(), trim(value));
+    if (found == entry->choices.end()) throw bad(fmt::format("one of {}", fmt::join(entry->choices, ", ")));
+    *std::get<int*>(entry->target) = static_cast<int>(found - entry->choices.begin());
+    return;
+  }
   std::visit(
       [&](auto* field) {
         using T = std::remove_pointer_t<decltype(field)>;
@@ -98,6 +106,7 @@ void ParamList::assign(std::string_view key, std::string_view value, std::string
 }
 
 std::string ParamList::format(const Entry& entry) {
+  if (!entry.choices.empty()) return entry.choices.at(static_cast<std::size_t>(*std::get<int*>(entry.target)));
   return std::visit(
       [](auto* field) -> std::string {
         using T = std::remove_pointer_t<decltype(field)>;
@@ -113,7 +122,7 @@ std::string ParamList::format(const Entry& entry) {
 std::string ParamList::describe(std::string_view indent) const {
   std::string text;
   for (const Entry& entry : entries_) {
-    const char* type = std::visit(
+    const char* type = !entry.choices.empty() ? "name" : std::visit(
         [](auto* field) {
           using T = std::remove_pointer_t<decltype(field)>;
           if constexpr (std::is_same_v<T, double>) return "real";

@@ -25,12 +25,18 @@ class ParamList {
     std::string key;
     Target target;
     std::string doc;
+    std::vector<std::string> choices;  // named values of an int field (add_choice), else empty
   };
 
   void add(std::string_view key, int& field, std::string_view doc) { push(key, &field, doc); }
   void add(std::string_view key, std::int64_t& field, std::string_view doc) { push(key, &field, doc); }
   void add(std::string_view key, double& field, std::string_view doc) { push(key, &field, doc); }
   void add(std::string_view key, bool& field, std::string_view doc) { push(key, &field, doc); }
+  // A named choice, e.g. solver=newton|lbfgs|pdca: `field` holds the index of the chosen name.
+  void add_choice(std::string_view key, int& field, std::vector<std::string> names, std::string_view doc) {
+    push(key, &field, doc);
+    entries_.back().choices = std::move(names);
+  }
 
   const std::vector<Entry>& entries() const { return entries_; }
   const Entry* find(std::string_view key) const;
@@ -48,7 +54,7 @@ class ParamList {
  private:
   template <class T>
   void push(std::string_view key, T* field, std::string_view doc) {
-    entries_.push_back(Entry{std::string(key), Target{field}, std::string(doc)});
+    entries_.push_back(Entry{std::string(key), Target{field}, std::string(doc), {}});
   }
   std::vector<Entry> entries_;
 };

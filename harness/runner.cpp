@@ -38,8 +38,9 @@ const std::vector<std::string>& single_scan_metric_columns() {
 }
 
 const std::vector<std::string>& multi_scan_metric_columns() {
-  static const std::vector<std::string> columns = {"n_targets", "n_scans", "n_measurements", "mean_hpd",  "max_hpd",
-                                                   "mean_entropy", "time_us", "iterations",  "converged"};
+  static const std::vector<std::string> columns = {
+      "n_targets", "n_scans",    "n_measurements",    "mean_hpd", "max_hpd",       "mean_entropy",
+      "time_us",   "iterations", "converged",         "line_search_steps", "residual", "inner_residual"};
   return columns;
 }
 

@@ -17,6 +17,11 @@ struct SolveReport {
   bool converged = true; // false if an iteration cap stopped the method first
   double w_star = std::numeric_limits<double>::quiet_NaN();  // W* of Lemma 2 where computed
   double free_energy = std::numeric_limits<double>::quiet_NaN();  // objective at the solution where defined (fbp: eq 138)
+  // Methods with a line search and a measured optimality residual (the column-dual Newton solver
+  // of cv/cvs): backtracking steps in all, and the largest final residuals (NaN / −1: not reported).
+  int line_search_steps = -1;
+  double residual = std::numeric_limits<double>::quiet_NaN();
+  double inner_residual = std::numeric_limits<double>::quiet_NaN();
 
   void reset() {
     skipped.clear();
@@ -24,6 +29,9 @@ struct SolveReport {
     converged = true;
     w_star = std::numeric_limits<double>::quiet_NaN();
     free_energy = std::numeric_limits<double>::quiet_NaN();
+    line_search_steps = -1;
+    residual = std::numeric_limits<double>::quiet_NaN();
+    inner_residual = std::numeric_limits<double>::quiet_NaN();
   }
 };
 

@@ -15,6 +15,7 @@
 
 #include "algorithms/convex_variational.hpp"
 #include "algorithms/fractional_bp.hpp"
+#include "tests/support/free_energy_kkt.hpp"
 #include "tests/support/multi_scan.hpp"
 
 using namespace dabench;
@@ -63,60 +64,16 @@ Solved solve_all(const MultiScanProblem& problem, const Coefficients& c, const P
   return solved;
 }
 
-// Largest component of the gradient of (63) at `primal`, projected onto the null space of the
-// equality constraints (57)-(58) of each track (all factors > 0, so the point is interior and
-// the KKT conditions reduce to a vanishing projected gradient). The consistency terms use
-// q^{i,j}_t' = Σ_A q_t'(A, j) and q^{0,j}_t' = 1 − Σ_i q^{i,j}_t' (59), (61).
+// The KKT check of (63) at Algorithm 2's primal point, with q^{0,j} = 1 − Σ_i q^{i,j} (61).
 double projected_gradient(const MultiScanProblem& problem, const ConvexVariationalPdca::Primal& primal,
                           const Coefficients& c) {
-  const int n = problem.tracks();
-  const int scans = problem.scan_count();
-  std::vector<RowMatrix> association(scans);
-  std::vector<Vector> clutter(scans);
-  for (int t = 0; t < scans; ++t) {
-    association[t].resize(n, problem.scans[t].measurements + 1);
-    for (int i = 0; i < n; ++i) association[t].row(i) = primal.pair[t][i].colwise().sum();
-    clutter[t] = Vector::Ones(problem.scans[t].measurements) - association[t].rightCols(problem.scans[t].measurements).colwise().sum().transpose();
+  FreeEnergyPoint point{primal.track, primal.pair, {}};
+  for (int t = 0; t < problem.scan_count(); ++t) {
+    Vector clutter = Vector::Ones(problem.scans[t].measurements);
+    for (int i = 0; i < problem.tracks(); ++i) clutter -= primal.pair[t][i].colwise().sum().tail(clutter.size()).transpose();
+    point.clutter.push_back(clutter);
   }
-  double largest = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const int h_count = problem.hypotheses(i);
-    std::vector<int> offset(scans + 1, h_count);
-    for (int t = 0; t < scans; ++t) offset[t + 1] = offset[t] + h_count * (problem.scans[t].measurements + 1);
-    const int size = offset[scans];
-    Vector gradient(size);
-    const Vector& q = primal.track[i];
-    for (int h = 0; h < h_count; ++h) {
-      gradient[h] = (1.0 - scans) * (std::log(q[h]) + 1.0) - std::log(problem.prior[i][h]);
-    }
-    for (int t = 0; t < scans; ++t) {
-      const int columns = problem.scans[t].measurements + 1;
-      for (int h = 0; h < h_count; ++h) {
-        for (int a = 0; a < columns; ++a) {
-          double g = std::log(primal.pair[t][i](h, a)) + 1.0 - std::log(problem.scans[t].factor[i](h, a));
-          if (a > 0) {
-            g += -c.beta[t] * (std::log(clutter[t][a - 1]) + 1.0) + c.gamma[t] * (std::log1p(-association[t](i, a)) + 1.0);
-          }
-          gradient[offset[t] + h * columns + a] = g;
-        }
-      }
-    }
-    // Constraints: Σ_A q(A) = 1; Σ_a q_t'(A, a) − q(A) = 0 for every t', A.
-    Eigen::MatrixXd constraint = Eigen::MatrixXd::Zero(1 + scans * h_count, size);
-    constraint.row(0).head(h_count).setOnes();
-    for (int t = 0; t < scans; ++t) {
-      const int columns = problem.scans[t].measurements + 1;
-      for (int h = 0; h < h_count; ++h) {
-        const int row = 1 + t * h_count + h;
-        constraint(row, h) = -1.0;
-        constraint.block(row, offset[t] + h * columns, 1, columns).setOnes();
-      }
-    }
-    const Eigen::MatrixXd gram = constraint * constraint.transpose();
-    const Vector projected = gradient - constraint.transpose() * gram.ldlt().solve(constraint * gradient);
-    largest = std::max(largest, projected.cwiseAbs().maxCoeff());
-  }
-  return largest;
+  return dabench::test::projected_gradient(problem, point, c.gamma, c.beta);
 }
 
 }  // namespace
@@ -156,10 +113,12 @@ TEST_CASE("msbp: converges to a stationary point of the Bethe free energy (55)")
 
 TEST_CASE("cv on a single scan equals fractional BP on the reduced single-scan problem") {
   // One scan: (63) reduces to (138) with w^{i,j} = Σ_A ψ(A) ψ(A, j), α = 1, β, γ of the scan,
-  // and q(A) = Σ_a q^{i,a} ψ(A) ψ(A, a) / w^{i,a} (eq 116).
+  // and q(A) = Σ_a q^{i,a} ψ(A) ψ(A, a) / w^{i,a} (eq 116). Algorithm 2 and both column-dual solvers.
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const MultiScanProblem problem = random_multi_scan_problem({3, 4, {3}, 0.2}, 40 + seed);
-    const MultiScanRun run = run_multi_scan("cv:tolerance=1e-12,belief_tolerance=0", problem);
+    for (const char* spec : {"cv:solver=pdca,tolerance=1e-12,belief_tolerance=0", "cv:solver=newton", "cv:solver=lbfgs"}) {
+    INFO(spec);
+    const MultiScanRun run = run_multi_scan(spec, problem);
     REQUIRE(run.report.skipped.empty());
     REQUIRE(run.report.converged);
     const int n = problem.tracks();
@@ -184,6 +143,7 @@ TEST_CASE("cv on a single scan equals fractional BP on the reduced single-scan p
         if (w(i, a) > 0.0) q += expected(i, a) / w(i, a) * problem.prior[i].cwiseProduct(problem.scans[0].factor[i].col(a));
       }
       CHECK((run.beliefs.track[i] - q).cwiseAbs().maxCoeff() < 1e-9);
+    }
     }
   }
 }
@@ -282,8 +242,9 @@ TEST_CASE("the belief stopping rule stops early within its tolerance of the limi
     const MultiScanProblem problem = random_multi_scan_problem({3, 4, {3, 2, 3, 2}, 0.0}, seed);
     for (const std::string method : {"cv", "cvs"}) {
       INFO(method << " seed " << seed);
-      const MultiScanRun limit = run_multi_scan(method + ":tolerance=1e-12,belief_tolerance=0,max_sweeps=100000", problem);
-      const MultiScanRun early = run_multi_scan(method + ":belief_tolerance=1e-7", problem);
+      const MultiScanRun limit =
+          run_multi_scan(method + ":solver=pdca,tolerance=1e-12,belief_tolerance=0,max_sweeps=100000", problem);
+      const MultiScanRun early = run_multi_scan(method + ":solver=pdca,belief_tolerance=1e-7", problem);
       REQUIRE(limit.report.converged);
       REQUIRE(early.report.converged);
       CHECK(early.report.iterations < limit.report.iterations);
