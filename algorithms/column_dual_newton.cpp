@@ -12,7 +12,18 @@ namespace {
 
 constexpr double kArmijo = 1e-4;         // sufficient-increase fraction of the line search
 constexpr double kSmallestStep = 1e-12;  // backtracking gives up below this step fraction
-constexpr double kInnerForcing = 1e-3;   // inner tolerance during a step: this times the outer residual
+constexpr double kInnerForcing = 1e-2;
+// Largest move of any σ_tj in one step. Where every track's indicator of an association is all
+// but certain (1 − μ ≈ 1e-30, say, for two tracks that both want measurement j), the tracks' part
+// of D is linear in σ_tj for tens of units and the quadratic model's maximiser lies at 1e30: the
+// step is scaled down to this trust radius (e^{10} in the tilts) and the next steps go on.
+constexpr double kTrustRadius = 10.0;
+
+// Scales `direction` so that no component exceeds kTrustRadius.
+void limit_step(Vector& direction) {
+  const double largest = direction.size() > 0 ? direction.cwiseAbs().maxCoeff() : 0.0;
+  if (largest > kTrustRadius) direction *= kTrustRadius / largest;
+}   // inner tolerance during a step: this times the outer residual
 // K ≻ 0 in exact arithmetic, but the entries of near-certain associations (variances far below
 // 1e-16) carry rounding noise: a ridge of this fraction of the largest diagonal keeps the
 // factorisation meaningful without touching the directions whose curvature is above it.
@@ -54,7 +65,8 @@ bool ColumnDualSolver::applicable(const MultiScanProblem& problem) {
 }
 
 void ColumnDualSolver::start(const MultiScanProblem& problem) {
-  tracks_.resize(problem.tracks());
+  if (static_cast<int>(track_pool_.size()) < problem.tracks()) track_pool_.resize(problem.tracks());
+  tracks_ = std::span<TiltedTrack>(track_pool_.data(), static_cast<std::size_t>(problem.tracks()));
   for (int i = 0; i < problem.tracks(); ++i) tracks_[i].start(problem.prior[i]);
   scans_.clear();
   offsets_.clear();
@@ -218,7 +230,7 @@ void ColumnDualSolver::newton_direction(Vector& direction) {
     // ∇m = r − K_T Δ + q⁰ (e^{−Δ/β} − 1), −∇²m = K_T + diag(q⁰ e^{−Δ/β} / β).
     model_gradient = gradient_ - matrix_ * direction;
     for (Eigen::Index k = 0; k < size; ++k) model_gradient[k] += clutter[k] * std::expm1(-direction[k] / beta[k]);
-    if (model_gradient.cwiseAbs().maxCoeff() <= target) break;
+    if (model_gradient.cwiseAbs().maxCoeff() <= target || direction.cwiseAbs().maxCoeff() > kTrustRadius) break;
     hessian = matrix_;
     for (Eigen::Index k = 0; k < size; ++k) hessian(k, k) += clutter[k] * std::exp(-direction[k] / beta[k]) / beta[k];
     if (!solve_positive(hessian, model_gradient, step)) break;
@@ -238,10 +250,12 @@ void ColumnDualSolver::newton_direction(Vector& direction) {
     }
     if (!accepted) break;
   }
+  limit_step(direction);  // m is concave and m(0) = 0 < m(Δ*): the scaled step still ascends
   if (direction.allFinite() && gradient_.dot(direction) > 0.0) return;
   Vector scaling;
   diagonal_scaling(scaling);
   direction = scaling.cwiseProduct(gradient_);
+  limit_step(direction);
 }
 
 bool ColumnDualSolver::only_gamma_scan(int t) const {
@@ -266,6 +280,7 @@ bool ColumnDualSolver::presolve(int focus, SolveReport& report) {
     for (const TiltedTrack& track : tracks_) track.add_block_matrix(focus, 0, block);
     for (int j = 0; j < m; ++j) block(j, j) += std::exp(-sigma_[scan.offset + j] / scan.beta - 1.0) / scan.beta;
     if (!solve_positive(block, residual, direction)) break;
+    limit_step(direction);
     const double slope = residual.dot(direction);
     const double value = value_;
     double step = 1.0;
@@ -293,6 +308,8 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
                             : size <= settings.newton_limit      ? DualMethod::kNewton
                                                                  : DualMethod::kLbfgs;
   if (report.line_search_steps < 0) report.line_search_steps = 0;
+  const auto gamma_scans = std::count_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return scan.gamma > 0.0; });
+  if (gamma_scans > 1) settings_.inner.tolerance = std::max(settings.inner.tolerance, kInnerForcing);
   const auto fresh = std::count_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return !scan.solved; });
   // After the presolve the tracks hold σ's evaluation with the new scan in their inner sets; when
   // that is their inner set anyway (the new scan is the γ-scan, as in cvs) the other scans'
@@ -306,16 +323,23 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
     report.skipped = "numerical";
     return;
   }
-  const auto gamma_scans = std::count_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return scan.gamma > 0.0; });
   std::deque<std::pair<Vector, Vector>> history;  // L-BFGS (s, y) pairs of −D
   Vector direction, trial, previous_gradient, scaling;
   int iterations = 0;
   bool converged = false;
   while (true) {
     const double residual = size > 0 ? gradient_.cwiseAbs().maxCoeff() : 0.0;
-    if (residual <= settings.tolerance && largest_inner_residual() > settings.inner.tolerance &&
-        settings_.inner.tolerance > settings.inner.tolerance) {
-      settings_.inner.tolerance = settings.inner.tolerance;  // finish the inner solves at this σ
+    // With several γ-scans every inner step reads all tables, so the inner solves are inexact
+    // while the outer residual is large (an inexact Newton method: the gradient then errs by about
+    // kInnerForcing of the residual, and trial values by its square, far below the gains tested).
+    // When the residual has fallen, the current point is re-evaluated with the tighter inner
+    // tolerance first, so that its value and gradient compare with the trials'. With one γ-scan
+    // the inner solve reads no table (tilted_track.hpp) and is always exact.
+    const double inner_target = gamma_scans > 1 ? std::max(settings.inner.tolerance, kInnerForcing * residual)
+                                                : settings.inner.tolerance;
+    if (inner_target < 0.1 * settings_.inner.tolerance ||
+        (residual <= settings.tolerance && settings_.inner.tolerance > settings.inner.tolerance)) {
+      settings_.inner.tolerance = residual <= settings.tolerance ? settings.inner.tolerance : inner_target;
       if (!evaluate(sigma_)) break;
       continue;
     }
@@ -342,18 +366,15 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
         direction += s * (alpha[k] - y.dot(direction) / y.dot(s));
       }
     }
+    if (method == DualMethod::kLbfgs) limit_step(direction);
     double slope = gradient_.dot(direction);
     if (!(slope > 0.0)) {  // not an ascent direction (rounding): scaled gradient instead
       diagonal_scaling(scaling);
       direction = scaling.cwiseProduct(gradient_);
+      limit_step(direction);
       slope = gradient_.dot(direction);
       history.clear();
     }
-    // With several γ-scans every inner step reads all tables: the inner solves are then inexact
-    // while the outer residual is large (an inexact Newton method; the trial values carry an
-    // error of order (inner residual)², far below the gains tested). With one γ-scan the inner
-    // solve reads no table (tilted_track.hpp) and stays exact.
-    if (gamma_scans > 1) settings_.inner.tolerance = std::max(settings.inner.tolerance, kInnerForcing * residual);
     const double value = value_;
     const double residual_norm = gradient_.norm();
     previous_gradient = gradient_;

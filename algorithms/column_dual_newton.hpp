@@ -47,6 +47,7 @@
 // Stopping: the largest column residual |r_tj| below `tolerance` and every inner residual
 // |v − log(1 − μ)| below `inner.tolerance`. Near the maximiser D changes by less than its
 // floating-point resolution; a step is then accepted when it lowers ‖r‖ instead.
+#include <span>
 #include <vector>
 
 #include "algorithms/tilted_track.hpp"
@@ -133,7 +134,8 @@ class ColumnDualSolver {
   bool presolve(int scan, SolveReport& report);
   bool only_gamma_scan(int t) const;  // no scan but t has γ > 0
 
-  std::vector<TiltedTrack> tracks_;
+  std::vector<TiltedTrack> track_pool_;  // kept between problems (with their buffers)
+  std::span<TiltedTrack> tracks_;         // the current problem's tracks
   std::vector<Scan> scans_;
   std::vector<int> offsets_;
   Vector sigma_;                      // σ, stacked over scans

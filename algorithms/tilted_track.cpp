@@ -22,6 +22,9 @@ constexpr double kMatrixWeightFloor = 1e-8;
 constexpr double kCandidateFloor = 1e-16;
 // Below this 1 − μ_t(j), the γ-column j carries no cross-scan terms in the matrix (see covariance()).
 constexpr double kSmallComplement = 1e-6;
+// Associations less likely than this for a track (μ_t(j) < 1e-12) change its Newton matrix and
+// inner Jacobian by O(μ) only: they take no part in their dense solves.
+const double kLogActiveFloor = std::log(1e-12);
 
 // log(e^a + e^b).
 double log_add(double a, double b) {
@@ -136,37 +139,38 @@ double pairwise_sum(const Vector& x) {
 
 void TiltedTrack::start(const Vector& prior) {
   prior_ = prior;
-  scans_.clear();
+  scan_count_ = 0;
   sensitivity_valid_ = false;
   repack();
 }
 
 void TiltedTrack::append_scan(const RowMatrix& factor) {
-  Scan scan;
+  if (scan_count_ == static_cast<int>(scans_.size())) scans_.emplace_back();
+  Scan& scan = scans_[scan_count_++];
   scan.measurements = static_cast<int>(factor.cols()) - 1;
+  scan.gamma = 0.0;
   scan.original = &factor;
-  scan.offset = Vector::Zero(scan.measurements);
-  scan.log_unused = Vector::Zero(scan.measurements);
-  scan.log_marginal = Vector::Constant(scan.measurements + 1, kMinusInfinity);
-  scan.log_complement = Vector::Zero(scan.measurements);
+  scan.offset.setZero(scan.measurements);
+  scan.log_unused.setZero(scan.measurements);
+  scan.log_marginal.setConstant(scan.measurements + 1, kMinusInfinity);
+  scan.log_complement.setZero(scan.measurements);
   bool drops = false;
   for (int h : kept_) drops = drops || !(factor.row(h).maxCoeff() > 0.0);
-  scans_.push_back(std::move(scan));
   sensitivity_valid_ = false;
   candidates_valid_ = false;
   if (drops) {
     repack();
     return;
   }
-  pack(scans_.back());
-  evidence_.conservativeResize(static_cast<Eigen::Index>(kept_.size()), scans());
+  pack(scan);
+  evidence_.resize(kept_.size() * static_cast<std::size_t>(scans()));
 }
 
 void TiltedTrack::repack() {
   kept_.clear();
   for (Eigen::Index h = 0; h < prior_.size(); ++h) {
     bool alive = prior_[h] > 0.0;
-    for (const Scan& scan : scans_) alive = alive && scan.original->row(h).maxCoeff() > 0.0;
+    for (int t = 0; t < scans(); ++t) alive = alive && scans_[t].original->row(h).maxCoeff() > 0.0;
     if (alive) kept_.push_back(static_cast<int>(h));
   }
   const auto kept = static_cast<Eigen::Index>(kept_.size());
@@ -175,21 +179,22 @@ void TiltedTrack::repack() {
   const double top = kept > 0 ? weight_.maxCoeff() : 1.0;
   weight_ /= top;
   log_weight_scale_ = std::log(top);
-  for (Scan& scan : scans_) pack(scan);
-  evidence_.resize(kept, scans());
+  for (int t = 0; t < scans(); ++t) pack(scans_[t]);
+  evidence_.resize(kept_.size() * static_cast<std::size_t>(scans()));
 }
 
 void TiltedTrack::pack(Scan& scan) const {
   const RowMatrix& original = *scan.original;
   const auto kept = static_cast<Eigen::Index>(kept_.size());
   const int m = scan.measurements;
-  scan.factor.resize(kept, m + 1);
+  scan.factor.resize(static_cast<std::size_t>(kept) * static_cast<std::size_t>(m + 1));
+  Eigen::Map<ColumnMatrix> table(scan.factor.data(), kept, m + 1);
   scan.candidate_start.assign(1, 0);
   scan.candidate_column.clear();
   scan.candidate_factor.clear();
   for (Eigen::Index k = 0; k < kept; ++k) {
     const auto row = original.row(kept_[k]);
-    scan.factor.row(k) = row;
+    table.row(k) = row;
     const double floor = row.maxCoeff() * kCandidateFloor;
     for (int j = 1; j <= m; ++j) {
       if (row[j] > floor) {
@@ -200,7 +205,7 @@ void TiltedTrack::pack(Scan& scan) const {
     scan.candidate_start.push_back(static_cast<int>(scan.candidate_column.size()));
   }
   scan.possible.assign(m, 0);
-  for (int j = 1; j <= m; ++j) scan.possible[j - 1] = (scan.factor.col(j).array() > 0.0).any();
+  for (int j = 1; j <= m; ++j) scan.possible[j - 1] = (table.col(j).array() > 0.0).any();
 }
 
 void TiltedTrack::build_candidates() {
@@ -238,8 +243,8 @@ bool TiltedTrack::multiply_evidence(int t, Vector& product, double& log_scale, d
   // The product is rescaled by an exact power of two after every scan, the factor applied
   // lazily in the next pass (`pending`); the caller applies the last one.
   const Scan& scan = scans_[t];
-  const double top = evidence_pass(scan.factor.data(), evidence_.rows(), scan.measurements + 1, scan.tilt.data(),
-                                   pending, evidence_.col(t).data(), product.data());
+  const double top = evidence_pass(scan.factor.data(), kept_rows(), scan.measurements + 1, scan.tilt.data(), pending,
+                                   evidence(t), product.data());
   if (!(top > 0.0) || !std::isfinite(top)) return false;
   int exponent = 0;
   std::frexp(top, &exponent);
@@ -250,10 +255,10 @@ bool TiltedTrack::multiply_evidence(int t, Vector& product, double& log_scale, d
 
 void TiltedTrack::scan_marginals(int t) {
   Scan& scan = scans_[t];
-  const Eigen::Index rows = evidence_.rows();
+  const Eigen::Index rows = kept_rows();
   column_sum_.resize(scan.measurements + 1);
   partial_.resize(8 * (scan.measurements + 1));
-  marginal_pass(scan.factor.data(), rows, scan.measurements + 1, evidence_.col(t).data(), product_.data(), partial_.data(),
+  marginal_pass(scan.factor.data(), rows, scan.measurements + 1, evidence(t), product_.data(), partial_.data(),
                 column_sum_.data());
   scan.log_marginal = scan.log_tilt.array() + column_sum_.array().log() - log_total_;
   log_sums_without(scan.log_marginal, scan.log_complement, tail_);
@@ -336,52 +341,67 @@ double TiltedTrack::inner_residual(Vector& residual) const {
   return largest;
 }
 
-void TiltedTrack::inner_step(const Vector& residual, Vector& step) {
+void TiltedTrack::inner_step(const Vector& residual, bool refresh, Vector& step) {
   // J = ∂F/∂v = I − G diag(1/(1 − μ)) Σ over the inner unknowns. Within a scan Σ is closed form
   // (Σ_jj = μ_j (1 − μ_j), Σ_jk = −μ_j μ_k: J_jj = 1 − γ μ_j, J_jk = γ μ_j μ_k / (1 − μ_j)); across
   // scans (several γ-scans, as in cv) it is summed over the hypotheses by covariance(), with the
   // Newton matrix's rules (hypotheses above a mass floor; no cross terms where 1 − μ is small).
-  const Eigen::Index size = residual.size();
-  jacobian_.setIdentity(size, size);
-  std::vector<int> scan_of(static_cast<std::size_t>(size)), index_of(static_cast<std::size_t>(size));
-  Eigen::Index k = 0;
-  for (int t : inner_scans_) {
-    for (int j = 0; j < scans_[t].measurements; ++j, ++k) {
-      scan_of[k] = t;
-      index_of[k] = j;
-    }
-  }
+  // That sum costs about a pass over the tables, so with several γ-scans J is kept for the
+  // following steps of the same solve unless `refresh` (a chord step). Rows of unknowns whose
+  // association is all but impossible (μ < kActiveFloor) differ from the identity by O(μ) and
+  // are taken as identity rows, so the dense solve is over the active unknowns only.
   const bool cross = inner_scans_.size() > 1;
-  if (cross) {
-    local_offsets_.resize(static_cast<std::size_t>(scans()));
-    int total = 0;
-    for (int t = 0; t < scans(); ++t) {
-      local_offsets_[t] = total;
-      total += scans_[t].measurements;
-    }
-    covariance(local_offsets_, total, inner_covariance_);
-  }
-  for (Eigen::Index r = 0; r < size; ++r) {
-    const Scan& scan = scans_[scan_of[r]];
-    const int j = index_of[r];
-    if (!is_inner(scan, j)) continue;
-    const double log_mu = scan.log_marginal[j + 1];
-    const double log_complement = scan.log_complement[j];
-    for (Eigen::Index c = 0; c < size; ++c) {
-      const Scan& other = scans_[scan_of[c]];
-      const int l = index_of[c];
-      if (!is_inner(other, l)) continue;
-      if (scan_of[c] == scan_of[r]) {
-        jacobian_(r, c) = l == j ? 1.0 - scan.gamma * std::exp(log_mu)
-                                 : scan.gamma * std::exp(log_mu + other.log_marginal[l + 1] - log_complement);
-      } else if (cross && std::exp(log_complement) >= kSmallComplement &&
-                 std::exp(other.log_complement[l]) >= kSmallComplement) {
-        const double covariance = inner_covariance_(local_offsets_[scan_of[r]] + j, local_offsets_[scan_of[c]] + l);
-        jacobian_(r, c) = -scan.gamma * covariance * std::exp(-log_complement);
+  step = -residual;
+  if (!(cross && !refresh && jacobian_factor_.rows() == static_cast<Eigen::Index>(active_.size()))) {
+    scan_of_.clear();
+    index_of_.clear();
+    active_.clear();
+    for (int t : inner_scans_) {
+      const Scan& scan = scans_[t];
+      for (int j = 0; j < scan.measurements; ++j) {
+        if (is_inner(scan, j) && scan.log_marginal[j + 1] >= kLogActiveFloor) {
+          active_.push_back(static_cast<int>(scan_of_.size()));
+        }
+        scan_of_.push_back(t);
+        index_of_.push_back(j);
       }
     }
+    if (cross) {
+      local_offsets_.resize(static_cast<std::size_t>(scans()));
+      int total = 0;
+      for (int t = 0; t < scans(); ++t) {
+        local_offsets_[t] = total;
+        total += scans_[t].measurements;
+      }
+      covariance(local_offsets_, total, inner_covariance_);
+    }
+    const auto count = static_cast<Eigen::Index>(active_.size());
+    jacobian_.setIdentity(count, count);
+    for (Eigen::Index r = 0; r < count; ++r) {
+      const Scan& scan = scans_[scan_of_[active_[r]]];
+      const int j = index_of_[active_[r]];
+      const double log_mu = scan.log_marginal[j + 1];
+      const double log_complement = scan.log_complement[j];
+      for (Eigen::Index c = 0; c < count; ++c) {
+        const Scan& other = scans_[scan_of_[active_[c]]];
+        const int l = index_of_[active_[c]];
+        if (scan_of_[active_[c]] == scan_of_[active_[r]]) {
+          jacobian_(r, c) = l == j ? 1.0 - scan.gamma * std::exp(log_mu)
+                                   : scan.gamma * std::exp(log_mu + other.log_marginal[l + 1] - log_complement);
+        } else if (cross && std::exp(log_complement) >= kSmallComplement &&
+                   std::exp(other.log_complement[l]) >= kSmallComplement) {
+          const double covariance =
+              inner_covariance_(local_offsets_[scan_of_[active_[r]]] + j, local_offsets_[scan_of_[active_[c]]] + l);
+          jacobian_(r, c) = -scan.gamma * covariance * std::exp(-log_complement);
+        }
+      }
+    }
+    jacobian_factor_.compute(jacobian_);
   }
-  step = jacobian_.partialPivLu().solve(-residual);
+  active_residual_.resize(static_cast<Eigen::Index>(active_.size()));
+  for (std::size_t r = 0; r < active_.size(); ++r) active_residual_[static_cast<Eigen::Index>(r)] = -residual[active_[r]];
+  active_step_ = jacobian_factor_.solve(active_residual_);
+  for (std::size_t r = 0; r < active_.size(); ++r) step[active_[r]] = active_step_[static_cast<Eigen::Index>(r)];
 }
 
 TrackEvaluation TiltedTrack::inner_solve(const std::vector<Vector>& sigma, const InnerSolveSettings& settings) {
@@ -393,8 +413,11 @@ TrackEvaluation TiltedTrack::inner_solve(const std::vector<Vector>& sigma, const
   // Damped Newton on F(v) = v − log(1 − μ(v)); J is nonsingular (the Hessian of a partial
   // minimum of a strictly convex function), so a decrease of ‖F‖ at every step leads to the root.
   double largest = inner_residual(residual_);
+  double previous_merit = std::numeric_limits<double>::infinity();
   while (largest > settings.tolerance && result.inner_iterations < settings.max_iterations) {
-    inner_step(residual_, step_);
+    // A new Jacobian on the first step and whenever the last step cut ‖F‖² by less than 100×.
+    inner_step(residual_, result.inner_iterations == 0 || residual_.squaredNorm() > 1e-2 * previous_merit, step_);
+    previous_merit = residual_.squaredNorm();
     inner_unknowns(unknowns_);
     const double merit = residual_.squaredNorm();
     double alpha = 1.0;
@@ -451,7 +474,7 @@ TrackEvaluation TiltedTrack::evaluate(const std::vector<Vector>& sigma, const In
     const Scan& scan = scans_[inner_scans_[0]];
     rest_sums_.resize(scan.measurements + 1);
     partial_.resize(8 * (scan.measurements + 1));
-    column_sums(scan.factor.data(), evidence_.rows(), scan.measurements + 1, rest_.data(), partial_.data(), rest_sums_.data());
+    column_sums(scan.factor.data(), kept_rows(), scan.measurements + 1, rest_.data(), partial_.data(), rest_sums_.data());
     log_rest_sums_ = rest_sums_.array().log();
   }
   return inner_solve(sigma, settings);
@@ -499,8 +522,8 @@ void TiltedTrack::covariance(const std::vector<int>& offsets, int size, Eigen::M
   for (int t = 0; t < scan_count; ++t) tilt_of_scan_[t] = scans_[t].tilt.data();
   inverse_evidence_.resize(static_cast<std::size_t>(kept) * static_cast<std::size_t>(scan_count));
   for (int t = 0; t < scan_count; ++t) {
-    const double* evidence = evidence_.col(t).data();
-    for (Eigen::Index a = 0; a < kept; ++a) inverse_evidence_[a * scan_count + t] = 1.0 / evidence[a];
+    const double* column = evidence(t);
+    for (Eigen::Index a = 0; a < kept; ++a) inverse_evidence_[a * scan_count + t] = 1.0 / column[a];
   }
   for (Eigen::Index a = 0; a < kept; ++a) {
     const double q = product_[a] * inverse_total;
@@ -556,7 +579,8 @@ void TiltedTrack::add_newton_matrix(const std::vector<int>& offsets, Eigen::Matr
   const int size = static_cast<int>(matrix.rows());
   Eigen::MatrixXd full;
   covariance(offsets, size, full);
-  // The γ-columns (inner unknowns of the γ-scans): S = Σ_{:,Γ} / (1 − μ_Γ).
+  // The γ-columns (active inner unknowns of the γ-scans): S = Σ_{:,Γ} / (1 − μ_Γ). An inactive
+  // one (μ < kActiveFloor) would add O(μ) to the matrix.
   std::vector<int> gamma_index;
   std::vector<double> gamma_value, complement;
   std::vector<int> gamma_scan;
@@ -564,7 +588,7 @@ void TiltedTrack::add_newton_matrix(const std::vector<int>& offsets, Eigen::Matr
     const Scan& scan = scans_[t];
     if (!(scan.gamma > 0.0)) continue;
     for (int j = 0; j < scan.measurements; ++j) {
-      if (!is_inner(scan, j)) continue;
+      if (!is_inner(scan, j) || scan.log_marginal[j + 1] < kLogActiveFloor) continue;
       gamma_index.push_back(offsets[t] + j);
       gamma_value.push_back(scan.gamma);
       gamma_scan.push_back(t);
@@ -688,10 +712,10 @@ RowMatrix TiltedTrack::pair_belief(int t) const {
   const double inverse_total = std::exp(-log_total_);
   for (std::size_t k = 0; k < kept_.size(); ++k) {
     const auto a = static_cast<Eigen::Index>(k);
-    const double evidence = evidence_(a, t);
-    if (!(evidence > 0.0)) continue;
+    const double s = evidence(t)[a];
+    if (!(s > 0.0)) continue;
     const double q = product_[a] * inverse_total;
-    for (int b = 0; b <= scan.measurements; ++b) pair(kept_[k], b) = q * scan.factor(a, b) * scan.tilt[b] / evidence;
+    for (int b = 0; b <= scan.measurements; ++b) pair(kept_[k], b) = q * scan.factor[b * kept_.size() + k] * scan.tilt[b] / s;
   }
   return pair;
 }

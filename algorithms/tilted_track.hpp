@@ -32,6 +32,7 @@
 //    in some scan) are dropped from the tables; an association that is impossible for this
 //    track (its column is zero) takes no part in the inner solve.
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <cstdint>
 #include <vector>
 
@@ -63,7 +64,7 @@ class TiltedTrack {
   void append_scan(const RowMatrix& factor);
   // False if no hypothesis is left (no feasible event for this track).
   bool feasible() const { return !kept_.empty(); }
-  int scans() const { return static_cast<int>(scans_.size()); }
+  int scans() const { return scan_count_; }
 
   void set_gamma(int t, double gamma) { scans_[t].gamma = gamma; }
   // Adds `shift` to δ_t (Theorem 3: Δγ [1 + log(1 − μ_t(j))] − Δβ [1 + log q⁰_t(j)], eq (91)).
@@ -108,7 +109,7 @@ class TiltedTrack {
     int measurements = 0;
     double gamma = 0.0;
     const RowMatrix* original = nullptr;  // the appended factor (all hypotheses), to re-pack
-    ColumnMatrix factor;                  // ψ_t(A, a), kept hypotheses × (m + 1)
+    std::vector<double> factor;           // ψ_t(A, a), kept hypotheses × (m + 1), column-major
     // Its candidate associations per kept hypothesis (compressed rows; see candidates_).
     std::vector<int> candidate_start;
     std::vector<int> candidate_column;
@@ -136,19 +137,25 @@ class TiltedTrack {
   void scan_marginals(int t);
   TrackEvaluation inner_solve(const std::vector<Vector>& sigma, const InnerSolveSettings& settings);
   double inner_residual(Vector& residual) const;
-  void inner_step(const Vector& residual, Vector& step);
+  void inner_step(const Vector& residual, bool refresh, Vector& step);
   void inner_unknowns(Vector& v) const;
   void set_inner_unknowns(const Vector& v);
   void covariance(const std::vector<int>& offsets, int size, Eigen::MatrixXd& sigma);
 
+  // Storage is kept between problems (scans_ beyond scan_count_, and every buffer's capacity),
+  // so that a run's solver touches no fresh memory after its first trials.
   std::vector<Scan> scans_;
+  int scan_count_ = 0;
   Vector prior_;                 // ψ(A), all original hypotheses
   std::vector<int> kept_;        // original index of each kept hypothesis
   Vector weight_;                // ψ(A) / max ψ over the kept hypotheses
   double log_weight_scale_ = 0.0;
   std::vector<int> inner_scans_;
   std::vector<int> other_scans_;
-  ColumnMatrix evidence_;        // s̃_t(A) = Σ_a ψ_t(A, a) e^{τ_t(a) − c_t}, kept hypotheses × scans
+  std::vector<double> evidence_;  // s̃_t(A) = Σ_a ψ_t(A, a) e^{τ_t(a) − c_t}, column-major kept × scans
+  Eigen::Index kept_rows() const { return static_cast<Eigen::Index>(kept_.size()); }
+  double* evidence(int t) { return evidence_.data() + static_cast<std::size_t>(t) * kept_.size(); }
+  const double* evidence(int t) const { return evidence_.data() + static_cast<std::size_t>(t) * kept_.size(); }
   Vector rest_;                  // ψ(A) Π_{t ∉ inner} s̃_t(A), scaled
   double rest_log_scale_ = 0.0;  // log of the factor the scaled rest_ omits
   Vector rest_sums_;             // U(a) = Σ_A rest(A) ψ_g(A, a) when the inner set is one scan g
@@ -163,6 +170,9 @@ class TiltedTrack {
   Vector column_sum_;
   Vector tail_;
   Eigen::MatrixXd jacobian_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> jacobian_factor_;
+  std::vector<int> scan_of_, index_of_, active_;  // inner unknowns: scan, measurement; active ones
+  Vector active_residual_, active_step_;
   Vector residual_, step_, unknowns_, trial_, trial_residual_;
   Eigen::MatrixXd inner_covariance_;  // Σ at the inner iterate (several inner scans)
   std::vector<int> local_offsets_;

@@ -65,7 +65,7 @@ TEST_CASE("run multi-scan: trials.csv and targets.csv rows and metrics agree", "
   const CsvTable targets = parse_csv(dir.read("A/targets.csv"));
   for (const char* column : {"point", "particles", "scans_per_sensor", "trial", "seed", "algorithm", "status", "n_targets",
                              "n_scans", "n_measurements", "mean_hpd", "max_hpd", "mean_entropy", "time_us",
-                             "iterations", "converged"}) {
+                             "iterations", "converged", "line_search_steps", "residual", "inner_residual"}) {
     CHECK(trials.find_column(column).has_value());
   }
   REQUIRE(trials.rows.size() == static_cast<std::size_t>(kPoints * kTrials * kSpecs));
@@ -155,6 +155,37 @@ TEST_CASE("run multi-scan: --resume after a hard kill finishes identically", "[r
     CHECK(dir.read("A/targets.csv") == targets);
     check_same(reference, table_without_time(dir, "A/trials.csv"));
   }
+}
+
+TEST_CASE("run multi-scan: the column-dual solver's diagnostics, identical for 1 and 2 threads", "[run][multi_scan]") {
+  // cv and cvs (column-dual Newton) report line-search steps and final residuals; msbp
+  // (Algorithm 2) leaves those columns empty.
+  TempDir dir;
+  dir.write("convex.ini",
+            "scenario = bearings\ntrials = 4\nseed = 5\nalgorithm = cv\nalgorithm = cvs:gamma=0.95\nalgorithm = msbp\n"
+            "[scenario]\nparticles = 60\nmean_targets = 3\n");
+  run_ok(dir, {"run", "convex.ini", "--threads", "1", "--out", "one"});
+  run_ok(dir, {"run", "convex.ini", "--threads", "2", "--out", "two"});
+  check_same(table_without_time(dir, "one/trials.csv"), table_without_time(dir, "two/trials.csv"));
+  CHECK(dir.read("one/targets.csv") == dir.read("two/targets.csv"));
+  const CsvTable trials = parse_csv(dir.read("one/trials.csv"));
+  int solved = 0;
+  for (std::size_t r = 0; r < trials.rows.size(); ++r) {
+    if (trials.at(r, "status") != "ok") continue;
+    INFO(trials.at(r, "algorithm") << " trial " << trials.at(r, "trial"));
+    if (trials.at(r, "algorithm") == "msbp") {
+      CHECK(trials.at(r, "residual").empty());
+      CHECK(trials.at(r, "line_search_steps").empty());
+      continue;
+    }
+    ++solved;
+    CHECK(trials.at(r, "converged") == "1");
+    CHECK(to_double(trials.at(r, "residual")) <= 1e-12);
+    CHECK(to_double(trials.at(r, "inner_residual")) <= 1e-13);
+    CHECK(to_double(trials.at(r, "line_search_steps")) >= 0.0);
+    CHECK(to_double(trials.at(r, "iterations")) >= 1.0);
+  }
+  CHECK(solved >= 6);
 }
 
 TEST_CASE("run multi-scan: draws without targets are skipped", "[run][multi_scan]") {
