@@ -67,7 +67,7 @@ struct ColumnDualSettings {
   double tolerance = 1e-12;      // largest column residual |Σ_i μ + q⁰ − 1| at which a solve stops
   int max_iterations = 500;      // Newton (or L-BFGS) iterations per solve; converged = false at the cap
   InnerSolveSettings inner;      // the tracks' inner solves on scans with γ > 0
-  int newton_limit = 400;        // kAuto: Newton while D = Σ_t m_t ≤ this
+  int newton_limit = 1500;       // kAuto: Newton while D = Σ_t m_t ≤ this
   int lbfgs_memory = 12;         // (s, y) pairs kept by L-BFGS
   bool presolve = true;          // solve a newly appended scan's duals alone first
   double presolve_tolerance = 1e-6;  // ... until its largest column residual is below this

@@ -42,7 +42,7 @@ struct ConvexSolverOptions {
   int solver = kAuto;                // auto: newton if Σ_t m_t <= newton_limit, else lbfgs
   double residual_tolerance = 1e-12; // newton/lbfgs: stop when every column residual |Σ_i q^{i,j} + q^{0,j} − 1| is below
   int max_iterations = 500;          // newton/lbfgs: iterations per solve (converged=0 if reached)
-  int newton_limit = 400;            // auto: largest number of column duals for newton
+  int newton_limit = 1500;           // auto: largest number of column duals for newton
   double tolerance = 1e-9;           // pdca: stop when no dual variable λ (log units) moved more than this in a sweep
   double belief_tolerance = 1e-7;    // pdca: or when the beliefs are estimated within this of their limit
   int max_sweeps = 2000;             // pdca: sweep cap per solve (converged=0 if reached)

@@ -373,7 +373,7 @@ void TiltedTrack::inner_step(const Vector& residual, bool refresh, Vector& step)
         local_offsets_[t] = total;
         total += scans_[t].measurements;
       }
-      covariance(local_offsets_, total, inner_covariance_);
+      covariance(local_offsets_, total);
     }
     const auto count = static_cast<Eigen::Index>(active_.size());
     jacobian_.setIdentity(count, count);
@@ -390,9 +390,9 @@ void TiltedTrack::inner_step(const Vector& residual, bool refresh, Vector& step)
                                    : scan.gamma * std::exp(log_mu + other.log_marginal[l + 1] - log_complement);
         } else if (cross && std::exp(log_complement) >= kSmallComplement &&
                    std::exp(other.log_complement[l]) >= kSmallComplement) {
-          const double covariance =
-              inner_covariance_(local_offsets_[scan_of_[active_[r]]] + j, local_offsets_[scan_of_[active_[c]]] + l);
-          jacobian_(r, c) = -scan.gamma * covariance * std::exp(-log_complement);
+          const int row = active_position_[local_offsets_[scan_of_[active_[r]]] + j];
+          const int column = active_position_[local_offsets_[scan_of_[active_[c]]] + l];
+          if (row >= 0 && column >= 0) jacobian_(r, c) = -scan.gamma * active_covariance_(row, column) * std::exp(-log_complement);
         }
       }
     }
@@ -506,17 +506,28 @@ double TiltedTrack::dual_value() const {
   return value;
 }
 
-void TiltedTrack::covariance(const std::vector<int>& offsets, int size, Eigen::MatrixXd& sigma) {
-  // Cross-scan sums E[p_k(A) p_l(A)] over the hypotheses that carry mass, from each
-  // hypothesis's candidate associations, p_t(j | A) = ψ_t(A, j) e^{τ_t(j) − c_t} / s̃_t(A).
-  // Entries come in scan order, so the pairs across scans are those with an entry of an
-  // earlier scan.
+void TiltedTrack::covariance(const std::vector<int>& offsets, int size) {
+  // Σ over the active associations (μ ≥ kActiveFloor; the others' entries are O(μ)): within a
+  // scan closed form, across scans E[p_k(A) p_l(A)] − μ_k μ_l with the sums over the hypotheses
+  // that carry mass, from each hypothesis's candidate associations,
+  // p_t(j | A) = ψ_t(A, j) e^{τ_t(j) − c_t} / s̃_t(A). Entries come in scan order, so the pairs
+  // across scans are those with an entry of an earlier scan.
   if (!candidates_valid_) build_candidates();
+  active_index_.clear();
+  active_position_.assign(static_cast<std::size_t>(size), -1);
+  for (int t = 0; t < scans(); ++t) {
+    for (int j = 0; j < scans_[t].measurements; ++j) {
+      if (scans_[t].log_marginal[j + 1] < kLogActiveFloor) continue;
+      active_position_[offsets[t] + j] = static_cast<int>(active_index_.size());
+      active_index_.push_back(offsets[t] + j);
+    }
+  }
+  const auto active = static_cast<Eigen::Index>(active_index_.size());
   const auto kept = static_cast<Eigen::Index>(kept_.size());
   const double inverse_total = std::exp(-log_total_);
-  entry_index_.resize(static_cast<std::size_t>(size));
-  entry_value_.resize(static_cast<std::size_t>(size));
-  cross_.assign(static_cast<std::size_t>(size) * static_cast<std::size_t>(size), 0.0);
+  entry_index_.resize(static_cast<std::size_t>(active));
+  entry_value_.resize(static_cast<std::size_t>(active));
+  cross_.assign(static_cast<std::size_t>(active) * static_cast<std::size_t>(active), 0.0);
   const int scan_count = scans();
   tilt_of_scan_.resize(static_cast<std::size_t>(scan_count));
   for (int t = 0; t < scan_count; ++t) tilt_of_scan_[t] = scans_[t].tilt.data();
@@ -541,117 +552,108 @@ void TiltedTrack::covariance(const std::vector<int>& offsets, int size, Eigen::M
         scan_first = count;
         inverse = inverse_evidence_[a * scan_count + scan];
       }
+      const int position = active_position_[offsets[scan] + candidate.column - 1];
+      if (position < 0) continue;
       const double p = candidate.factor * tilt_of_scan_[scan][candidate.column] * inverse;
       if (p < entry_floor) continue;
-      const int k = offsets[scan] + candidate.column - 1;
       const double qp = q * p;
-      double* row = cross_.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(size);
+      double* row = cross_.data() + static_cast<std::size_t>(position) * static_cast<std::size_t>(active);
       for (int y = 0; y < scan_first; ++y) row[entry_index_[y]] += qp * entry_value_[y];
-      entry_index_[count] = k;
+      entry_index_[count] = position;
       entry_value_[count] = p;
       ++count;
     }
   }
-  sigma.resize(size, size);
-  for (int k = 0; k < size; ++k) {
-    for (int l = 0; l < size; ++l) sigma(k, l) = cross_[static_cast<std::size_t>(k) * static_cast<std::size_t>(size) + l];
+  Eigen::MatrixXd& sigma = active_covariance_;
+  sigma.resize(active, active);
+  Vector& mu = active_mu_;
+  mu.resize(active);
+  std::vector<int>& scan_of = active_scan_;
+  scan_of.resize(static_cast<std::size_t>(active));
+  for (Eigen::Index k = 0; k < active; ++k) {
+    int t = 0;
+    while (t + 1 < scan_count && offsets[t + 1] <= active_index_[k]) ++t;
+    scan_of[k] = t;
+    mu[k] = std::exp(scans_[t].log_marginal[active_index_[k] - offsets[t] + 1]);
   }
-  Vector mu(size);
-  for (int t = 0; t < scans(); ++t) {
-    for (int j = 1; j <= scans_[t].measurements; ++j) mu[offsets[t] + j - 1] = std::exp(scans_[t].log_marginal[j]);
-  }
-  for (int t = 0; t < scans(); ++t) {
-    const Scan& scan = scans_[t];
-    const int m = scan.measurements;
-    for (int j = 0; j < m; ++j) {
-      const int k = offsets[t] + j;
-      for (int l = 0; l < offsets[t]; ++l) sigma(k, l) -= mu[k] * mu[l];  // across scans
-      sigma(k, k) = std::exp(scan.log_marginal[j + 1] + scan.log_complement[j]);  // μ(1 − μ)
-      for (int l = 0; l < j; ++l) sigma(k, offsets[t] + l) = -mu[k] * mu[offsets[t] + l];
+  for (Eigen::Index k = 0; k < active; ++k) {
+    const Scan& scan = scans_[scan_of[k]];
+    const int j = active_index_[k] - offsets[scan_of[k]];
+    for (Eigen::Index l = 0; l < k; ++l) {
+      sigma(k, l) = scan_of[l] == scan_of[k] ? -mu[k] * mu[l]
+                                             : cross_[static_cast<std::size_t>(k) * static_cast<std::size_t>(active) + l] - mu[k] * mu[l];
+      sigma(l, k) = sigma(k, l);
     }
-  }
-  for (int k = 0; k < size; ++k) {
-    for (int l = 0; l < k; ++l) sigma(l, k) = sigma(k, l);
+    sigma(k, k) = std::exp(scan.log_marginal[j + 1] + scan.log_complement[j]);  // μ(1 − μ)
   }
 }
 
 void TiltedTrack::add_newton_matrix(const std::vector<int>& offsets, Eigen::MatrixXd& matrix) {
-  const int size = static_cast<int>(matrix.rows());
-  Eigen::MatrixXd full;
-  covariance(offsets, size, full);
-  // The γ-columns (active inner unknowns of the γ-scans): S = Σ_{:,Γ} / (1 − μ_Γ). An inactive
-  // one (μ < kActiveFloor) would add O(μ) to the matrix.
-  std::vector<int> gamma_index;
-  std::vector<double> gamma_value, complement;
-  std::vector<int> gamma_scan;
-  for (int t = 0; t < scans(); ++t) {
-    const Scan& scan = scans_[t];
-    if (!(scan.gamma > 0.0)) continue;
-    for (int j = 0; j < scan.measurements; ++j) {
-      if (!is_inner(scan, j) || scan.log_marginal[j + 1] < kLogActiveFloor) continue;
-      gamma_index.push_back(offsets[t] + j);
-      gamma_value.push_back(scan.gamma);
-      gamma_scan.push_back(t);
-      complement.push_back(std::exp(scan.log_complement[j]));
-    }
+  covariance(offsets, static_cast<int>(matrix.rows()));
+  Eigen::MatrixXd& full = active_covariance_;
+  const auto active = static_cast<Eigen::Index>(active_index_.size());
+  // The γ-columns (active inner unknowns of the γ-scans): S = Σ_{:,Γ} / (1 − μ_Γ).
+  gamma_column_.clear();
+  for (Eigen::Index k = 0; k < active; ++k) {
+    const Scan& scan = scans_[active_scan_[k]];
+    if (is_inner(scan, active_index_[k] - offsets[active_scan_[k]])) gamma_column_.push_back(static_cast<int>(k));
   }
-  const auto count = static_cast<Eigen::Index>(gamma_index.size());
+  const auto count = static_cast<Eigen::Index>(gamma_column_.size());
+  const auto scatter = [&](const Eigen::MatrixXd& block) {
+    for (Eigen::Index c = 0; c < active; ++c) {
+      for (Eigen::Index r = 0; r < active; ++r) matrix(active_index_[r], active_index_[c]) += block(r, c);
+    }
+  };
   if (count == 0) {
-    matrix += full;
+    scatter(full);
     sensitivity_valid_ = false;
     return;
   }
-  // Where 1 − μ_t(j) is small, the association is all but certain and Σ_{:,j} lives on that
-  // scale: its cross-scan entries are differences of O(1) sums, noise once divided by 1 − μ.
-  // They are dropped there; every entry they touch is itself of order 1 − μ_t(j), so the matrix
-  // only loses accuracy in directions whose residuals are that small (the gradient stays exact).
+  Vector complement(count), gamma(count);
   for (Eigen::Index c = 0; c < count; ++c) {
+    const int k = gamma_column_[c];
+    const Scan& scan = scans_[active_scan_[k]];
+    complement[c] = std::exp(scan.log_complement[active_index_[k] - offsets[active_scan_[k]]]);
+    gamma[c] = scan.gamma;
+    // Where 1 − μ_t(j) is small, the association is all but certain and Σ_{:,j} lives on that
+    // scale: its cross-scan entries are differences of O(1) sums, noise once divided by 1 − μ.
+    // They are dropped there; every entry they touch is itself of order 1 − μ_t(j), so the
+    // matrix only loses accuracy in directions whose residuals are that small.
     if (complement[c] >= kSmallComplement) continue;
-    const int column = gamma_index[c];
-    const int t = gamma_scan[c];
-    for (int k = 0; k < size; ++k) {
-      if (k >= offsets[t] && k < offsets[t] + scans_[t].measurements) continue;
-      full(k, column) = full(column, k) = 0.0;
+    for (Eigen::Index l = 0; l < active; ++l) {
+      if (active_scan_[l] != active_scan_[k]) full(l, k) = full(k, l) = 0.0;
     }
   }
-  Eigen::MatrixXd scaled(size, count);  // S_{:,Γ}
-  for (Eigen::Index c = 0; c < count; ++c) scaled.col(c) = full.col(gamma_index[c]) / complement[c];
+  Eigen::MatrixXd scaled(active, count);  // S_{:,Γ}
+  for (Eigen::Index c = 0; c < count; ++c) scaled.col(c) = full.col(gamma_column_[c]) / complement[c];
   Eigen::MatrixXd inner(count, count);  // I − G S_ΓΓᵀ
-  for (Eigen::Index r = 0; r < count; ++r) {
-    for (Eigen::Index c = 0; c < count; ++c) inner(r, c) = (r == c ? 1.0 : 0.0) - gamma_value[r] * scaled(gamma_index[c], r);
-  }
-  Eigen::MatrixXd right = scaled.transpose();  // G S_{:,Γ}ᵀ
-  for (Eigen::Index r = 0; r < count; ++r) right.row(r) *= gamma_value[r];
-  const Eigen::PartialPivLU<Eigen::MatrixXd> factor(inner);
-  Eigen::MatrixXd columns(size, count);
-  for (Eigen::Index c = 0; c < count; ++c) columns.col(c) = full.col(gamma_index[c]);
-  const Eigen::MatrixXd correction = columns * factor.solve(right);
-  matrix += full + 0.5 * (correction + correction.transpose());
-  // ∂v_Γ/∂σ = diag(1/(1 − μ_Γ)) K_i[Γ, :] = (I − S_ΓΓᵀ G)⁻¹ S_{:,Γ}ᵀ, for guess_inner().
   Eigen::MatrixXd transposed(count, count);  // I − S_ΓΓᵀ G
   for (Eigen::Index r = 0; r < count; ++r) {
-    for (Eigen::Index c = 0; c < count; ++c) transposed(r, c) = (r == c ? 1.0 : 0.0) - scaled(gamma_index[c], r) * gamma_value[c];
-  }
-  inner_sensitivity_ = transposed.partialPivLu().solve(Eigen::MatrixXd(scaled.transpose()));
-  // Inner unknowns are stacked over the inner scans' full measurement lists; map them.
-  Eigen::Index unknowns = 0;
-  for (int t : inner_scans_) unknowns += scans_[t].measurements;
-  Eigen::MatrixXd sensitivity = Eigen::MatrixXd::Zero(unknowns, size);
-  std::vector<Eigen::Index> position(static_cast<std::size_t>(count), -1);
-  {
-    Eigen::Index k = 0;
-    for (int t : inner_scans_) {
-      for (int j = 0; j < scans_[t].measurements; ++j, ++k) {
-        const auto found = std::find(gamma_index.begin(), gamma_index.end(), offsets[t] + j);
-        if (found != gamma_index.end()) position[found - gamma_index.begin()] = k;
-      }
+    for (Eigen::Index c = 0; c < count; ++c) {
+      const double s = scaled(gamma_column_[c], r);  // S_ΓΓ(c, r)
+      inner(r, c) = (r == c ? 1.0 : 0.0) - gamma[r] * s;
+      transposed(r, c) = (r == c ? 1.0 : 0.0) - s * gamma[c];
     }
   }
-  for (Eigen::Index c = 0; c < count; ++c) {
-    if (position[c] < 0) continue;
-    sensitivity.row(position[c]) = inner_sensitivity_.row(c);
+  const Eigen::MatrixXd right = gamma.asDiagonal() * scaled.transpose();  // G S_{:,Γ}ᵀ
+  Eigen::MatrixXd columns(active, count);
+  for (Eigen::Index c = 0; c < count; ++c) columns.col(c) = full.col(gamma_column_[c]);
+  const Eigen::MatrixXd correction = columns * inner.partialPivLu().solve(right);
+  scatter(full + 0.5 * (correction + correction.transpose()));
+  // ∂v_Γ/∂σ = diag(1/(1 − μ_Γ)) K_i[Γ, :] = (I − S_ΓΓᵀ G)⁻¹ S_{:,Γ}ᵀ for guess_inner(), on the
+  // active columns; rows mapped to the inner unknowns (stacked over the inner scans).
+  inner_sensitivity_ = transposed.partialPivLu().solve(Eigen::MatrixXd(scaled.transpose()));
+  sensitivity_columns_ = active_index_;
+  sensitivity_rows_.assign(static_cast<std::size_t>(count), -1);
+  int stacked = 0;
+  for (int t : inner_scans_) {
+    for (int j = 0; j < scans_[t].measurements; ++j, ++stacked) {
+      const int position = active_position_[offsets[t] + j];
+      if (position < 0) continue;
+      const auto found = std::find(gamma_column_.begin(), gamma_column_.end(), position);
+      if (found != gamma_column_.end()) sensitivity_rows_[found - gamma_column_.begin()] = stacked;
+    }
   }
-  inner_sensitivity_.swap(sensitivity);
   inner_unknowns(inner_base_);
   sensitivity_valid_ = true;
 }
@@ -684,15 +686,15 @@ void TiltedTrack::add_block_matrix(int t, int offset, Eigen::MatrixXd& matrix) c
 }
 
 void TiltedTrack::guess_inner(const Vector& step) {
-  if (!sensitivity_valid_ || inner_base_.size() != inner_sensitivity_.rows()) return;
-  Vector guess = inner_base_ + inner_sensitivity_ * step;
-  Eigen::Index k = 0;
-  for (int t : inner_scans_) {
-    Scan& scan = scans_[t];
-    for (int j = 0; j < scan.measurements; ++j, ++k) {
-      if (is_inner(scan, j)) scan.log_unused[j] = std::min(guess[k], 0.0);  // v = log(1 − μ) ≤ 0
-    }
+  if (!sensitivity_valid_) return;
+  unknowns_ = inner_base_;
+  for (Eigen::Index r = 0; r < inner_sensitivity_.rows(); ++r) {
+    if (sensitivity_rows_[r] < 0 || sensitivity_rows_[r] >= unknowns_.size()) continue;
+    double change = 0.0;
+    for (Eigen::Index c = 0; c < inner_sensitivity_.cols(); ++c) change += inner_sensitivity_(r, c) * step[sensitivity_columns_[c]];
+    unknowns_[sensitivity_rows_[r]] = std::min(inner_base_[sensitivity_rows_[r]] + change, 0.0);  // v = log(1 − μ) ≤ 0
   }
+  set_inner_unknowns(unknowns_);
 }
 
 void TiltedTrack::write_belief(Vector& belief) const {

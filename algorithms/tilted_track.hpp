@@ -16,10 +16,18 @@
 //
 // Passes. The factor tables are column-major (one column per association, contiguous over the
 // hypotheses), so every pass is a few streaming multiply–adds per entry. An evaluation reads
-// the scans outside the inner set once (their evidence s_t and the product over them, `rest`),
-// then iterates on the inner set (the γ-scans, plus a `focus` scan whose duals move alone during
-// the solver's new-scan presolve) reading only those tables, and gives log Z; finish() then
-// reads the other scans again for their marginals — only for points the solver keeps.
+// the scans outside the inner set once (their evidence s_t and the product over them, `rest`)
+// and then solves the inner equations on the inner set (the γ-scans, plus a `focus` scan whose
+// duals move alone during the solver's new-scan presolve). When the inner set is one scan g (as
+// in cvs) that solve reads no table at all: q(A) ∝ rest(A) s_g(A) gives
+//   μ_g(a) = e^{τ_g(a)} U(a) / Σ_b e^{τ_g(b)} U(b),   U(a) = Σ_A rest(A) ψ_g(A, a),
+// with U fixed by the other scans, and log Z from the same sums. finish() then reads the other
+// scans again for their marginals — only for points the solver keeps.
+//
+// Newton matrix (add_newton_matrix). It only steers the steps (the gradient is exact), so it is
+// summed over the hypotheses with q(A) ≥ 1e-8 and, per hypothesis, over the associations of its
+// candidate list with √q(A) p_t(j | A) ≥ 1e-8, and it spans the track's active associations
+// (μ_t(j) ≥ 1e-12; the others would add O(μ)). The within-scan blocks are exact closed forms.
 //
 // Numerics (the traps of ../shared/multiscan-fast-solver.md, Risks):
 //  - linear domain over the hypotheses, scaled: per scan the tilts are e^{τ − c_t} with
@@ -140,7 +148,9 @@ class TiltedTrack {
   void inner_step(const Vector& residual, bool refresh, Vector& step);
   void inner_unknowns(Vector& v) const;
   void set_inner_unknowns(const Vector& v);
-  void covariance(const std::vector<int>& offsets, int size, Eigen::MatrixXd& sigma);
+  // Σ of the association indicators over the active associations (μ ≥ kActiveFloor) into
+  // active_covariance_, their stacked indices (scan t from offsets[t]) in active_index_.
+  void covariance(const std::vector<int>& offsets, int size);
 
   // Storage is kept between problems (scans_ beyond scan_count_, and every buffer's capacity),
   // so that a run's solver touches no fresh memory after its first trials.
@@ -174,8 +184,10 @@ class TiltedTrack {
   std::vector<int> scan_of_, index_of_, active_;  // inner unknowns: scan, measurement; active ones
   Vector active_residual_, active_step_;
   Vector residual_, step_, unknowns_, trial_, trial_residual_;
-  Eigen::MatrixXd inner_covariance_;  // Σ at the inner iterate (several inner scans)
   std::vector<int> local_offsets_;
+  std::vector<int> active_index_, active_position_, active_scan_, gamma_column_;
+  Eigen::MatrixXd active_covariance_;
+  Vector active_mu_;
   // Per kept hypothesis, over all scans in order, the associations j ≥ 1 whose factor is within
   // kCandidateFloor of its row's largest: the only ones that can reach the matrix's entry floor
   // at moderate tilts (the matrix only steers the Newton step). Rebuilt after a scan is appended.
@@ -193,8 +205,10 @@ class TiltedTrack {
   std::vector<const double*> tilt_of_scan_;
   std::vector<double> cross_;         // row-major size × size: Σ_A q p_k p_l for k in a later scan than l
   // First-order model of the inner unknowns around the last Newton-matrix point.
-  Eigen::MatrixXd inner_sensitivity_;  // ∂v_Γ/∂σ (all scans' duals as columns)
-  Vector inner_base_;                  // v_Γ at that point
+  Eigen::MatrixXd inner_sensitivity_;  // ∂v_Γ/∂σ: active γ-unknowns × active associations
+  std::vector<int> sensitivity_rows_;  // the rows' positions among the stacked inner unknowns
+  std::vector<int> sensitivity_columns_;  // the columns' stacked σ indices
+  Vector inner_base_;                  // v at that point
   bool sensitivity_valid_ = false;
 };
 
