@@ -18,14 +18,22 @@
 //  3. Dualising only (61), with multipliers σ_t(j) (the σ of (132)–(133)): the dual
 //       D(σ) = Σ_i min_μ [F_i(μ) + ⟨σ, μ⟩] − Σ_tj [β_t q⁰_tj + σ_tj],  q⁰_tj = e^{−σ_tj/β_t − 1} (133),
 //     is concave and C¹ with gradient r_tj = Σ_i μ^i_t(j) + q⁰_tj − 1, and strong duality holds
-//     (Slater point: every track misses every measurement). The inner minimum of track i is the
+//     with an attained maximum when every track can miss in every scan (the Slater point "every
+//     track misses": not in general, as the notes have it — a track that must take measurement j
+//     pushes σ_tj to +∞; applicable() sends such problems to Algorithm 2). The inner minimum of track i is the
 //     tilted posterior of tilted_track.hpp (θ = −σ on scans with γ = 0; on the others θ solves
 //     θ = −σ − γ[1 + log(1 − μ(θ))], the analogue of (132), by the track's inner Newton).
 //  4. −∇²D = K = Σ_i K_i + diag(q⁰/β), with K_i ⪰ 0 the derivative of track i's marginals
-//     through its inner solve (tilted_track.hpp), so K ≻ 0: damped Newton, Δσ = K⁻¹ r with
-//     Armijo backtracking on D, converges from any start and quadratically near the maximiser
-//     (Boyd & Vandenberghe §9.5). At the maximiser every condition of (56)–(62) and (132)–(133)
-//     holds, so its beliefs are the minimiser of (63) that Algorithm 2 approaches.
+//     through its inner solve (tilted_track.hpp), so K ≻ 0: damped Newton with Armijo
+//     backtracking on D converges from any start and quadratically near the maximiser (Boyd &
+//     Vandenberghe §9.5). At the maximiser every condition of (56)–(62) and (132)–(133) holds,
+//     so its beliefs are the minimiser of (63) that Algorithm 2 approaches.
+// The step is not the plain Δσ = K⁻¹ r: D's clutter part C(σ) = −Σ_tj [β_t q⁰_tj + σ_tj] has
+// curvature q⁰/β, and on the past scans of cvs (β ≈ 0.01) a plain step of a few units in σ
+// multiplies q⁰ by e^{hundreds} (most of the damped phase the notes report). The step maximises
+// a model that keeps C exact and quadratises only the tracks' part (newton_direction()), and is
+// cut to a trust radius of 10 in every σ_tj, which the model needs where every track's
+// indicator of an association is all but certain (its curvature there is ~1e-30).
 // Theorem 3 (eq 91) changes no table: reweight() adds Δγ[1 + log(1 − μ^i_t(j))] − Δβ[1 + log q⁰_tj]
 // to the track's offsets δ^i_t(j) and moves σ_tj by −Δβ[1 + log q⁰_tj] (eq 137), after which the
 // previous solution is exactly optimal (the next solve takes no Newton step).
@@ -33,16 +41,22 @@
 // Hessian-free variant (method kLbfgs): L-BFGS on the same dual (Liu & Nocedal 1989), with the
 // diagonal of K as initial inverse-Hessian scaling and the same line search. It needs only the
 // gradient, so its cost does not grow with D²; kAuto uses it when the number of column duals
-// D = Σ_t m_t exceeds `newton_limit`. Newton's matrix costs about (mass-carrying hypotheses) ×
-// (nonzero associations per hypothesis)² per track plus D³/3 for the Cholesky factor.
+// D = Σ_t m_t exceeds `newton_limit` (1500). Newton's matrix costs about (mass-carrying
+// hypotheses) × (associations per hypothesis)² per track plus a few D³/3 Cholesky factors per
+// step; at D = 663 (60 tracks, 12 scans, 300 particles) Newton still took 13 s against L-BFGS's
+// 20 s for cvs and 50 s against 227 s for cv, so the switch is set where the factors (≈ 10⁹ flops
+// at D = 1500) start to cost more than the passes L-BFGS repeats (an estimate, not a measurement).
 //
 // Engineering (none of it changes the maximiser): a line-search trial first evaluates D only (the
 // scans outside the tracks' inner sets are read once); the marginals of those scans — a second
 // read — are computed only for the point kept. The inner unknowns of a trial start from their
-// first-order prediction (∂v/∂σ from the Newton matrix). When one scan was appended since the
-// last solve (the sequential methods), its duals are first solved alone with the other scans
-// fixed (`presolve`: block Newton reading only the new scan's tables), which removes most of the
-// damped phase of the full Newton iteration.
+// first-order prediction (∂v/∂σ from the Newton matrix). With one γ-scan (cvs) the inner solves
+// read no table (tilted_track.hpp); with several (cv) they are inexact while ‖r‖ is large (an
+// inexact Newton method: inner tolerance 1e-2 ‖r‖∞, down to `inner.tolerance` at the end). When
+// one scan was appended since the last solve (the sequential methods), its duals are first solved
+// alone with the other scans fixed (`presolve`: block Newton, which reads no table either), which
+// removes most of the damped phase of the full iteration. Costs: benchmark bearings_trial in
+// bench/bench_multi_scan.cpp.
 //
 // Stopping: the largest column residual |r_tj| below `tolerance` and every inner residual
 // |v − log(1 − μ)| below `inner.tolerance`. Near the maximiser D changes by less than its

@@ -1,8 +1,10 @@
 #pragma once
 // Primal–dual coordinate ascent (PDCA) for the multiple-scan convex free energy: Algorithm 2 of
 // Williams & Lau, "Multiple scan data association by convex variational inference"
-// (multiscan-convex-variational), Sec. III and Appendices B–C. This is the engine shared by the
-// registered variants (cv, cvs, cvh, cvsh, cvsh1, msbp: convex_variational_variants.hpp).
+// (multiscan-convex-variational), Sec. III and Appendices B–C. msbp and cvsh1 run it; cv, cvs,
+// cvh and cvsh run it under `solver=pdca`, as the validator of their default column-dual solver
+// (column_dual_newton.hpp: the same minimiser of (63), about 10³–10⁴ times faster on the paper's
+// problem). See convex_variational_variants.hpp.
 //
 // Objective (63), with per-scan coefficients γ_t' (concave terms) and β_t' (false alarms):
 //   F = −Σ_i {H(A^i) + E log ψ^i} − Σ_t' Σ_i {H(a_t'|A^i) + E log ψ^i_t'}
