@@ -12,6 +12,7 @@
 
 #include "harness/errors.hpp"
 #include "harness/experiment.hpp"
+#include "harness/heap_policy.hpp"
 #include "harness/json.hpp"
 #include "harness/registry.hpp"
 #include "harness/runner.hpp"
@@ -210,6 +211,7 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
 }  // namespace
 
 int cli_main(int argc, char** argv) {
+  retain_freed_heap_memory();
   const std::string command = argc > 1 ? argv[1] : "";
   try {
     if (command == "list") {
