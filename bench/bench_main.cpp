@@ -1,7 +1,7 @@
-// Google Benchmark's main with dabench's heap policy (harness/heap_policy.hpp), as in `dabench`.
+// Google Benchmark's main with dabench's heap policy (harness/core/heap_policy.hpp), as in `dabench`.
 #include <benchmark/benchmark.h>
 
-#include "harness/heap_policy.hpp"
+#include "harness/core/heap_policy.hpp"
 
 int main(int argc, char** argv) {
   dabench::retain_freed_heap_memory();

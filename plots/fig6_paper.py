@@ -72,8 +72,8 @@ CANONICAL_LS = {
     "jt": {0.1: "-.", 0.01: "--", 0.001: "-"},
 }
 EXTRA_LS = [":", (0, (5, 1, 1, 1, 1, 1)), (0, (1, 1)), (0, (8, 2)), (0, (3, 1, 1, 1))]
-# Defaults of the ordering parameter when a SPEC omits it; they mirror algorithms/mcmcda.hpp
-# (samples = 100000) and algorithms/correlation_decay.hpp (depth = 5). jt has no default here.
+# Defaults of the ordering parameter when a SPEC omits it; they mirror algorithms/single_scan/mcmcda.hpp
+# (samples = 100000) and algorithms/single_scan/correlation_decay.hpp (depth = 5). jt has no default here.
 SPEC_DEFAULTS = {"mcmcda": 1e5, "cd": 5.0}
 REFERENCE_FAMILIES = ("exact", "ehm")
 DISPLAY = {"bp": "BP", "lmipda": "LMIPDA", "baa": "BAA", "mcmcda": "MCMCDA", "cd": "CD",

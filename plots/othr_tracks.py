@@ -13,7 +13,7 @@ in colour labelled Trk-<id> at their first scan. Only confirmed tracks are drawn
 (tentative ones then dotted); --min-length drops tracks shorter than that many scans (the
 metrics score confirmed tracks of at least 5 scans). Axes: bearing (rad) against ground range
 (km), or with --plane the ground plane x = g sin(theta), y = g cos(theta) (km; receiver at the
-origin, as in scenarios/othr_geometry.hpp). The run is --trial (default 0) of the chosen sweep
+origin, as in scenarios/tracking/othr_geometry.hpp). The run is --trial (default 0) of the chosen sweep
 point (default: the first point matching --where, else point 0). Writes a PNG (200 dpi) and an
 SVG; exit status 2 with a one-line message when the input cannot be plotted.
 """

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The whole test suite: install dependencies, build, run every Catch2 test through ctest.
+# The whole test suite: install dependencies, build, run every Catch2 test through ctest, then
+# install into a temporary prefix and build and run examples/outside-project against it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
-cd build
-ctest -j"$(nproc)" --output-on-failure
+(cd build && ctest -j"$(nproc)" --output-on-failure)
+bash scripts/test_outside_project.sh build

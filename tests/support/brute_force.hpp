@@ -20,11 +20,11 @@
 #include <numeric>
 #include <vector>
 
-#include "harness/marginal_table.hpp"
-#include "harness/matrix_types.hpp"
-#include "harness/random_stream.hpp"
-#include "harness/single_scan_problem.hpp"
-#include "harness/single_scan_solver.hpp"
+#include "harness/core/marginal_table.hpp"
+#include "harness/core/matrix_types.hpp"
+#include "harness/core/random_stream.hpp"
+#include "harness/single_scan/problem.hpp"
+#include "harness/single_scan/solver.hpp"
 
 namespace dabench::test {
 

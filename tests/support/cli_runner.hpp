@@ -6,7 +6,7 @@
 //   TempDir::io()    the captured stdout/stderr files (kept apart, so "no output file was
 //                    created" can be checked by listing work())
 // Also: small file helpers, a tree snapshot (relative path → contents) and an RFC 4180 CSV
-// reader that is independent of harness/csv.cpp (so the tests do not check the harness's
+// reader that is independent of harness/core/csv.cpp (so the tests do not check the harness's
 // output with the harness's own parser).
 #include <fcntl.h>
 #include <signal.h>

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <vector>
 
-#include "harness/multi_scan_problem.hpp"
+#include "harness/multi_scan/problem.hpp"
 
 namespace dabench::test {
 

@@ -6,7 +6,7 @@
 #include <exception>
 #include <string>
 
-#include "harness/errors.hpp"
+#include "harness/core/errors.hpp"
 
 namespace dabench::test {
 

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "harness/multi_scan_problem.hpp"
-#include "harness/multi_scan_solver.hpp"
-#include "harness/random_stream.hpp"
-#include "harness/registry.hpp"
+#include "harness/core/random_stream.hpp"
+#include "harness/multi_scan/problem.hpp"
+#include "harness/multi_scan/registry.hpp"
+#include "harness/multi_scan/solver.hpp"
 
 namespace dabench::test {
 

@@ -4,9 +4,9 @@
 // one target), where the exact marginals are PDA per target.
 #include <cmath>
 
-#include "harness/matrix_types.hpp"
-#include "harness/random_stream.hpp"
-#include "harness/single_scan_problem.hpp"
+#include "harness/core/matrix_types.hpp"
+#include "harness/core/random_stream.hpp"
+#include "harness/single_scan/problem.hpp"
 
 namespace dabench::test {
 

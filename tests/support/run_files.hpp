@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "harness/runner.hpp"
+#include "harness/run/runner.hpp"
 #include "tests/support/cli_runner.hpp"
 
 namespace dabench::test::cli {

@@ -1,0 +1,215 @@
+#pragma once
+// One track of the reduced column-dual problem of the multiple-scan convex free energy (63) of
+// Williams & Lau, "Multiple scan data association by convex variational inference"
+// (multiscan-convex-variational); the solver around it is column_dual_newton.hpp, whose header
+// gives the derivation. A track is a star tree — hypothesis A, one association a_t per scan — so
+// for fixed association marginals its Bethe entropy −H(A) − Σ_t H(a_t | A) is exact, and the
+// minimising pair beliefs are those of the tilted posterior
+//   q(A, a_1..a_S) ∝ ψ(A) Π_t ψ_t(A, a_t) e^{τ_t(a_t)},   τ_t(0) = 0,
+//   τ_t(j) = −σ_t(j) + δ_t(j) − γ_t (1 + v_t(j)),          j ≥ 1,
+// with σ the column duals of (61), δ the accumulated Theorem-3 offsets of eq (91) (the factor
+// modification, kept as numbers instead of rewriting the tables) and, on the scans with γ_t > 0,
+// v_t(j) = log(1 − μ_t(j)) solving the track's stationarity condition (the analogue of (132))
+//   θ_t(j) = −σ_t(j) − γ_t [1 + log(1 − μ_t(j))]            (the inner solve).
+// Marginals: μ_t(a) = Σ_A q(A) ψ_t(A, a) e^{τ_t(a)} / s_t(A), s_t(A) = Σ_a ψ_t(A, a) e^{τ_t(a)},
+// q(A) ∝ ψ(A) Π_t s_t(A).
+//
+// Passes. The factor tables are column-major (one column per association, contiguous over the
+// hypotheses), so every pass is a few streaming multiply–adds per entry. An evaluation reads
+// the scans outside the inner set once (their evidence s_t and the product over them, `rest`)
+// and then solves the inner equations on the inner set (the γ-scans, plus a `focus` scan whose
+// duals move alone during the solver's new-scan presolve). When the inner set is one scan g (as
+// in cvs) that solve reads no table at all: q(A) ∝ rest(A) s_g(A) gives
+//   μ_g(a) = e^{τ_g(a)} U(a) / Σ_b e^{τ_g(b)} U(b),   U(a) = Σ_A rest(A) ψ_g(A, a),
+// with U fixed by the other scans, and log Z from the same sums. finish() then reads the other
+// scans again for their marginals — only for points the solver keeps.
+//
+// Newton matrix (add_newton_matrix). It only steers the steps (the gradient is exact), so it is
+// summed over the hypotheses with q(A) ≥ 1e-8 and, per hypothesis, over the associations of its
+// candidate list with √q(A) p_t(j | A) ≥ 1e-8, and it spans the track's active associations
+// (μ_t(j) ≥ 1e-12; the others would add O(μ)). The within-scan blocks are exact closed forms.
+//
+// Numerics (the traps of ../shared/multiscan-fast-solver.md, Risks):
+//  - linear domain over the hypotheses, scaled: per scan the tilts are e^{τ − c_t} with
+//    c_t = max(0, max_j τ_t(j)) (no overflow), and the running product over scans is rescaled by
+//    an exact power of two after every scan (no underflow of the heaviest hypothesis);
+//  - marginals are kept as logarithms (log μ = τ − c_t + log U − log Z: never the log of an
+//    underflowed product), and complements 1 − μ_t(j) are log-sums of the other entries, never
+//    1 − x (at γ = 0.95 they reach e^{−100} and below);
+//  - hypotheses whose every feasible event has probability 0 (ψ(A) = 0, or an all-zero factor row
+//    in some scan) are dropped from the tables; an association that is impossible for this
+//    track (its column is zero) takes no part in the inner solve.
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <cstdint>
+#include <vector>
+
+#include "harness/core/matrix_types.hpp"
+
+namespace dabench {
+
+using ColumnMatrix = Eigen::MatrixXd;  // column-major
+
+struct InnerSolveSettings {
+  double tolerance = 1e-13;  // stop when every |v_t(j) − log(1 − μ_t(j))| is below this
+  int max_iterations = 100;  // damped Newton steps per evaluation
+};
+
+// What one evaluation of a track did.
+struct TrackEvaluation {
+  bool finite = true;           // false: the tilts put every hypothesis at probability 0 (or NaN)
+  int inner_iterations = 0;     // inner Newton steps taken
+  double inner_residual = 0.0;  // max |v − log(1 − μ)| over the inner unknowns at the end
+};
+
+class TiltedTrack {
+ public:
+  // Starts the track with prior ψ(A) over `prior.size()` hypotheses and no scans.
+  void start(const Vector& prior);
+  // Appends the factors ψ_t(A, a) of a new scan (one row per original hypothesis, column 0 =
+  // missed detection), with γ = 0, δ = 0, v = 0. `factor` must outlive the track's use (the
+  // tables are re-packed from it when a later scan removes hypotheses).
+  void append_scan(const RowMatrix& factor);
+  // False if no hypothesis is left (no feasible event for this track).
+  bool feasible() const { return !kept_.empty(); }
+  int scans() const { return scan_count_; }
+
+  void set_gamma(int t, double gamma) { scans_[t].gamma = gamma; }
+  // Adds `shift` to δ_t (Theorem 3: Δγ [1 + log(1 − μ_t(j))] − Δβ [1 + log q⁰_t(j)], eq (91)).
+  void add_offset(int t, const Vector& shift) { scans_[t].offset += shift; }
+
+  // Evaluates at column duals σ (`sigma[t]` has m_t entries): every scan's evidence, then the
+  // inner solve on the inner set (the scans with γ > 0, and `focus` if ≥ 0), warm-started from
+  // the last v. Gives log Z and the inner set's marginals; finish() gives the others'.
+  TrackEvaluation evaluate(const std::vector<Vector>& sigma, const InnerSolveSettings& settings, int focus = -1);
+  // Re-evaluates after σ changed on the inner set only: the other scans' evidence is reused.
+  TrackEvaluation evaluate_inner(const std::vector<Vector>& sigma, const InnerSolveSettings& settings);
+  // Marginals of the scans outside the inner set, at the last evaluation (same σ).
+  void finish(const std::vector<Vector>& sigma);
+
+  double log_partition() const { return log_partition_; }  // log Z(τ)
+  // The track's term of the dual: −log Z − Σ_{γ-scans} γ Σ_j [(1 + v_j) μ_j + (1 − μ_j) log(1 − μ_j)].
+  double dual_value() const;
+  const Vector& log_marginal(int t) const { return scans_[t].log_marginal; }      // log μ_t(a), a = 0..m_t
+  const Vector& log_complement(int t) const { return scans_[t].log_complement; }  // log(1 − μ_t(j)), j = 1..m_t
+
+  // Adds this track's block of the Newton matrix, −∂μ/∂σ with the inner solve eliminated,
+  //   K_i = Σ + Σ_{:,Γ} (I − G S_ΓΓᵀ)⁻¹ G S_{:,Γ}ᵀ,   S = Σ_{:,Γ} diag(1/(1 − μ_Γ)),  G = diag(γ),
+  // to `matrix` (D × D over every scan's measurements, scan t from `offsets[t]`). Σ is the
+  // covariance of the association indicators 1[a_t = j] under q: closed form within a scan,
+  // sums over the hypotheses across scans. Call after finish(). Also records ∂v/∂σ for
+  // guess_inner().
+  void add_newton_matrix(const std::vector<int>& offsets, Eigen::MatrixXd& matrix);
+  // Adds −∂μ_t/∂σ_t for scan t alone (the others fixed; t the only scan of the inner set), closed form.
+  void add_block_matrix(int t, int offset, Eigen::MatrixXd& matrix) const;
+  // Sets the inner unknowns to their first-order prediction at σ = σ_matrix + `step` (stacked
+  // like the matrix), σ_matrix being the point of the last add_newton_matrix().
+  void guess_inner(const Vector& step);
+
+  // q(A) for every original hypothesis (0 for dropped ones) and μ_t(a) of scan t.
+  void write_belief(Vector& belief) const;
+  void write_marginals(int t, double* row) const;
+  // The pair beliefs q_t(A, a) of scan t, one row per original hypothesis (for optimality checks).
+  RowMatrix pair_belief(int t) const;
+
+ private:
+  struct Scan {
+    int measurements = 0;
+    double gamma = 0.0;
+    const RowMatrix* original = nullptr;  // the appended factor (all hypotheses), to re-pack
+    std::vector<double> factor;           // ψ_t(A, a), kept hypotheses × (m + 1), column-major
+    // Its candidate associations per kept hypothesis (compressed rows; see candidates_).
+    std::vector<int> candidate_start;
+    std::vector<int> candidate_column;
+    std::vector<double> candidate_factor;
+    Vector offset;                        // δ_t(j), j = 1..m
+    Vector log_unused;                    // v_t(j), j = 1..m (inner unknowns where γ > 0)
+    std::vector<char> possible;           // column j ≥ 1 is nonzero for some kept hypothesis
+    // Last evaluation.
+    double shift = 0.0;                   // c_t
+    Vector log_tilt;                      // τ_t(a) − c_t, a = 0..m
+    Vector tilt;                          // e^{τ_t(a) − c_t}
+    Vector log_marginal;                  // log μ_t(a)
+    Vector log_complement;                // log(1 − μ_t(j)), j = 1..m
+    bool inner = false;                   // in the inner set
+  };
+
+  void repack();
+  void pack(Scan& scan) const;                      // factor table, its candidates, `possible`
+  void build_candidates();                          // candidate_start_, candidates_ from the scans' lists
+  bool is_inner(const Scan& scan, int j) const { return scan.gamma > 0.0 && scan.possible[j]; }
+  void set_tilts(int t, const Vector& sigma);
+  bool multiply_evidence(int t, Vector& product, double& log_scale, double& pending);  // evidence of t into the product
+  bool inner_pass(const std::vector<Vector>& sigma);  // inner set at the current v: log Z, its marginals
+  void form_product(const std::vector<Vector>& sigma);  // product_ = rest_ × the inner scans' evidence
+  void scan_marginals(int t);
+  TrackEvaluation inner_solve(const std::vector<Vector>& sigma, const InnerSolveSettings& settings);
+  double inner_residual(Vector& residual) const;
+  void inner_step(const Vector& residual, bool refresh, Vector& step);
+  void inner_unknowns(Vector& v) const;
+  void set_inner_unknowns(const Vector& v);
+  // Σ of the association indicators over the active associations (μ ≥ kActiveFloor) into
+  // active_covariance_, their stacked indices (scan t from offsets[t]) in active_index_.
+  void covariance(const std::vector<int>& offsets, int size);
+
+  // Storage is kept between problems (scans_ beyond scan_count_, and every buffer's capacity),
+  // so that a run's solver touches no fresh memory after its first trials.
+  std::vector<Scan> scans_;
+  int scan_count_ = 0;
+  Vector prior_;                 // ψ(A), all original hypotheses
+  std::vector<int> kept_;        // original index of each kept hypothesis
+  Vector weight_;                // ψ(A) / max ψ over the kept hypotheses
+  double log_weight_scale_ = 0.0;
+  std::vector<int> inner_scans_;
+  std::vector<int> other_scans_;
+  std::vector<double> evidence_;  // s̃_t(A) = Σ_a ψ_t(A, a) e^{τ_t(a) − c_t}, column-major kept × scans
+  Eigen::Index kept_rows() const { return static_cast<Eigen::Index>(kept_.size()); }
+  double* evidence(int t) { return evidence_.data() + static_cast<std::size_t>(t) * kept_.size(); }
+  const double* evidence(int t) const { return evidence_.data() + static_cast<std::size_t>(t) * kept_.size(); }
+  Vector rest_;                  // ψ(A) Π_{t ∉ inner} s̃_t(A), scaled
+  double rest_log_scale_ = 0.0;  // log of the factor the scaled rest_ omits
+  Vector rest_sums_;             // U(a) = Σ_A rest(A) ψ_g(A, a) when the inner set is one scan g
+  Vector log_rest_sums_;
+  Vector product_;               // ψ(A) Π_t s̃_t(A), scaled
+  bool product_valid_ = false;   // product_ matches the last evaluation
+  double product_log_scale_ = 0.0;
+  double log_total_ = 0.0;       // log Σ_A product_(A)
+  double log_partition_ = 0.0;
+  // Workspace (sized once per problem size).
+  Vector partial_;
+  Vector column_sum_;
+  Vector tail_;
+  Eigen::MatrixXd jacobian_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> jacobian_factor_;
+  std::vector<int> scan_of_, index_of_, active_;  // inner unknowns: scan, measurement; active ones
+  Vector active_residual_, active_step_;
+  Vector residual_, step_, unknowns_, trial_, trial_residual_;
+  std::vector<int> local_offsets_;
+  std::vector<int> active_index_, active_position_, active_scan_, gamma_column_;
+  Eigen::MatrixXd active_covariance_;
+  Vector active_mu_;
+  // Per kept hypothesis, over all scans in order, the associations j ≥ 1 whose factor is within
+  // kCandidateFloor of its row's largest: the only ones that can reach the matrix's entry floor
+  // at moderate tilts (the matrix only steers the Newton step). Rebuilt after a scan is appended.
+  struct Candidate {
+    int scan;
+    int column;
+    double factor;
+  };
+  std::vector<int> candidate_start_;  // kept + 1 offsets into candidates_
+  std::vector<Candidate> candidates_;
+  bool candidates_valid_ = false;
+  std::vector<int> entry_index_;
+  std::vector<double> entry_value_;
+  std::vector<double> inverse_evidence_;  // row-major kept × scans: 1 / s̃_t(A)
+  std::vector<const double*> tilt_of_scan_;
+  std::vector<double> cross_;         // row-major size × size: Σ_A q p_k p_l for k in a later scan than l
+  // First-order model of the inner unknowns around the last Newton-matrix point.
+  Eigen::MatrixXd inner_sensitivity_;  // ∂v_Γ/∂σ: active γ-unknowns × active associations
+  std::vector<int> sensitivity_rows_;  // the rows' positions among the stacked inner unknowns
+  std::vector<int> sensitivity_columns_;  // the columns' stacked σ indices
+  Vector inner_base_;                  // v at that point
+  bool sensitivity_valid_ = false;
+};
+
+}  // namespace dabench

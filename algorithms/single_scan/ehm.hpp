@@ -1,0 +1,220 @@
+#pragma once
+// Efficient hypothesis management: exact marginal association probabilities p(a_i = j) of the
+// single-scan model of Williams & Lau 2014 (bp-marginal-association, eqs 9-13), computed on a
+// net of partial hypotheses that exploits mutual exclusion:
+//   EHM  — S. Maskell, M. Briers, R. Wright, "Fast mutual exclusion", Proc. SPIE 5428 (2004);
+//   EHM2 — P. Horridge, S. Maskell, "Real-time tracking of hundreds of targets with efficient
+//          exact JPDAF implementation", FUSION 2006.
+// Williams & Lau (Sec. IV-A) describe EHM-2 as a junction tree whose hyper-node alphabet is
+// reduced to the states that respect mutual exclusion; the marginals equal those of eq (12).
+//
+// Method (per cluster of the gating graph; clusters are independent, eq 9 factorises):
+//  1. Targets are put in an order (`order`, below) and a tree of tracks is built on it. With
+//     `tree = false` the tree is the path of the order (EHM: one net layer per target). With
+//     `tree = true` (EHM2) it is built from the last target back to the first: target t
+//     becomes the parent of every subtree built so far whose gated measurements intersect t's
+//     gate, so targets whose futures are independent given the measurements used above them
+//     lie in separate branches.
+//  2. D(t) = measurements gated by the subtree of t. The key space of t is
+//     K(t) = D(t) ∩ (measurements gated by ancestors of t). A net node of layer t is
+//     identified by S ⊆ K(t), the measurements used by t's ancestors that are still relevant
+//     to t's subtree; it is stored as a bitset over K(t) (std::uint64_t words). Only
+//     measurements gated by ≥ 2 targets get bits: a measurement gated by one target only is
+//     folded with the missed detection into one choice of weight 1 + Σ_excl ψ_t(j).
+//  3. Backward (bottom-up): β_t(S) = Σ_{j ∈ {0} ∪ gate(t), j ∉ S} ψ_t(j) Π_{c child of t}
+//     β_c((S ∪ {j}) ∩ K(c)) — the summed weight of every consistent completion of the subtree
+//     of t given S (EHM2's "remaining weight" of a node).
+//     Forward (top-down): α_root(∅) = 1, α_c(S') = Σ_{S, j → S'} α_t(S) ψ_t(j)
+//     Π_{c' ≠ c} β_c'(…) — the summed weight of everything outside the subtree of c that leads
+//     to S'. Then p(a_t = j) ∝ Σ_{S ∈ layer t} α_t(S) ψ_t(j) Π_c β_c((S ∪ {j}) ∩ K(c)), which
+//     is eq (12) with Z the row sum (every row's sum equals Z).
+//  4. ψ_t(j) is the normalised weight w_tj / (w_t0 w_0j) (SingleScanProblem::normalized_weight),
+//     each target's row divided by max(1, max_j ψ_t(j)), and every layer of α and of β is
+//     divided by its largest entry (its log is kept per layer: stats().log_partition is log Z of
+//     the normalised problem), so nothing under- or overflows with hundreds of targets. The
+//     per-layer factors are common to all terms of a row, so they cancel in the marginals.
+//
+// Readings / choices:
+//  - `order` (an int, since options are numeric). 1 = greedy minimum frontier: repeatedly take
+//    the target whose addition leaves the fewest shared measurements gated both by a processed
+//    and by an unprocessed target (ties: most already-touched gate measurements, then lowest
+//    index) — a pathwidth heuristic on the gating graph that sweeps grids along their long axis.
+//    2 = Cuthill–McKee breadth-first order from a pseudo-peripheral target of the target
+//    adjacency graph (targets adjacent when they share a measurement). 3 = input order.
+//    0 (default) = auto: the cheapest, by Σ_k 2^(frontier after k targets), of the BFS order,
+//    greedy orders started by their own rule and from both ends of the BFS diameter, and the
+//    input order; choosing costs O(K²·gate) per cluster, negligible next to the net.
+//  - `threshold` zeroes normalised weights below it before anything else (as `exact:threshold`).
+//  - Work limit: the total number of net nodes in one solve is capped by `max_nodes`; past it
+//    the solve reports skipped:work_limit (so do more than 16 stored edges per allowed node).
+//    Before building, the chosen order's estimated net size (order_cost: an upper bound on the
+//    plain-EHM net, 0.6-1× the nodes actually built on the grids that finish) is compared with
+//    the cap: above 4 × max_nodes the cluster is refused at once as skipped:work_estimate,
+//    instead of spending seconds filling the budget.
+//    A key space wider than 512 bits reports skipped:key_width. Memory is about 16 bytes plus
+//    8 per key word per node, plus 4 bytes per (node, choice, child) edge: roughly 60 bytes a
+//    node on the grids, so up to about 3 GB per solver at the default cap of 5e7 nodes (lower
+//    it when many threads solve large problems at once).
+//  - Layers whose key space has at most 22 bits are indexed by a direct-address table
+//    (key → node id, 16 MB, reset entry by entry after each layer); wider ones by an
+//    open-addressing hash table with generation-stamped slots. Node keys, weights and edges live
+//    in flat member vectors, so a solve allocates nothing once they have grown. Results are
+//    bit-identical across repeats (node ids follow insertion order, fixed by the problem).
+//  - Cost: a layer holds up to 2^|K(t)| nodes, and on the paper's grids nearly every subset of
+//    the frontier is reachable (Pd 0.6; at spacing 3 the gates have radius ≈ 5-7, so a
+//    measurement is gated by up to ~12 targets). On the benchmark's pools (default options),
+//    3×n grids have |K| ≤ 17, while n×n grids grow as 2^(c·n): 5×5 |K| ≤ 22 (all solved); at
+//    8×8 some and at 10×10 most problems exceed the default cap. Times, key widths and skips per
+//    grid: solve_grid_ehm in bench/single_scan/bench_ehm.cpp (counters median_us, max_us,
+//    max_bits, skipped); recorded in results/bp-paper/REPORT.md (Timing).
+//    A target sweep cannot do better on a 10-wide grid: the frontier is a band ~10 units wide,
+//    ~25 measurements. The EHM2 tree branches only where the remaining targets split into
+//    measurement-disjoint groups, which on dense grids is rare (it then equals plain EHM).
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "algorithms/single_scan/association_graph.hpp"
+#include "harness/core/params.hpp"
+#include "harness/single_scan/solver.hpp"
+
+namespace dabench {
+
+struct EhmOptions {
+  double threshold = 0.0;              // weights ψ_i(j) below this are set to zero first
+  std::int64_t max_nodes = 50000000;   // work limit: net nodes per solve (skipped:work_limit above; ~3 GB)
+  int order = 0;                       // target order: 0 auto, 1 greedy min-frontier, 2 Cuthill–McKee BFS, 3 input
+  bool tree = true;                    // true: EHM2 tree of tracks; false: EHM net over the order (a path)
+
+  void bind(ParamList& params) {
+    params.add("threshold", threshold, "weights below this are treated as zero");
+    params.add("max_nodes", max_nodes, "work limit in net nodes per solve (skipped:work_limit above)");
+    params.add("order", order, "target order: 0 auto (cheapest of 1-3), 1 greedy min-frontier, 2 Cuthill-McKee BFS, 3 input");
+    params.add("tree", tree, "1: EHM2 tree of tracks; 0: plain EHM net over the order");
+  }
+  std::string validate() const;
+};
+
+// Diagnostics of the last solve (for tests and benchmarks).
+struct EhmStats {
+  std::int64_t nodes = 0;     // net nodes over all clusters
+  std::int64_t edges = 0;     // stored (node, choice, child) links
+  int max_layer_width = 0;    // largest number of nodes in one layer
+  int max_key_bits = 0;       // largest key space |K(t)|
+  int largest_cluster = 0;    // targets in the largest cluster
+  int clusters = 0;
+  double estimated_nodes = 0.0; // estimated net size of the chosen orders (order_cost)
+  double log_partition = 0.0; // log Z of the normalised problem (ψ_i(0) = 1 form)
+};
+
+class Ehm final : public SingleScanSolver {
+ public:
+  using Options = EhmOptions;
+  static constexpr std::string_view kName = "ehm";
+  static constexpr std::string_view kSummary =
+      "exact marginals by efficient hypothesis management (EHM/EHM2 net over measurement sets)";
+
+  explicit Ehm(const Options& options) : options_(options) {}
+  void solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) override;
+  const EhmStats& stats() const { return stats_; }
+
+ private:
+  struct Slot {
+    std::uint32_t stamp;
+    std::int32_t node;
+  };
+
+  // Returns "" on success, else the skip reason.
+  const char* solve_cluster(int first, int last, MarginalTable& marginals);
+  void solve_single(int target, MarginalTable& marginals);
+  void choose_order();
+  void order_greedy(const std::vector<int>& prefix);  // `prefix` first, then the greedy rule
+  void order_bfs();
+  double order_cost(const std::vector<int>& order, int& widest);
+  void build_tree();
+  int build_tables();  // returns the largest key space
+  // The net of the current cluster (ehm.cpp): run_net = build_net, backward_pass, forward_pass.
+  template <int W>
+  bool run_net(MarginalTable& marginals);
+  template <int W>
+  bool build_net();
+  template <int W>
+  bool build_child_direct(int p, int ci);
+  template <int W>
+  bool build_child_hashed(int p, int ci);
+  template <int W>
+  double backward_pass();
+  template <int W>
+  void forward_pass(MarginalTable& marginals);
+  template <int W>
+  void forward_layer(int p);
+  void write_row(int p, MarginalTable& marginals);
+  template <int W>
+  std::int32_t find_or_insert(const std::uint64_t* key);
+  template <int W>
+  void grow_table(std::int32_t layer_first);
+
+  static constexpr double kEstimateMargin = 4.0;  // refuse when the estimate exceeds this × max_nodes
+
+  Options options_;
+  EhmStats stats_;
+  double cluster_estimate_ = 0.0;   // order_cost of the current cluster's chosen order
+  AssociationGraph graph_;
+
+  // Cluster, indexed by local target li (cluster order) and local shared measurement id.
+  int cluster_size_ = 0;
+  int shared_ = 0;
+  std::vector<int> targets_;          // li → global target
+  std::vector<int> local_id_;         // global measurement → local shared id, or -1
+  std::vector<int> gate_begin_;       // li → shared gate entries [gate_begin_[li], gate_begin_[li+1])
+  std::vector<int> gate_meas_;        //   local shared id
+  std::vector<int> gate_edge_;        //   graph edge (for the output column)
+  std::vector<double> gate_weight_;   //   ψ / row scale
+  std::vector<double> stay_weight_;   // li → (1 + Σ_exclusive ψ) / row scale
+  std::vector<double> exclusive_sum_; // li → Σ_exclusive ψ (unscaled)
+  std::vector<double> row_scale_;     // li → max(1, max_j ψ)
+  std::vector<int> meas_begin_;       // local shared id → gating targets (li, ascending)
+  std::vector<int> meas_targets_;
+
+  // Order and tree, indexed by position p (0 = root).
+  std::vector<int> order_;            // p → li
+  std::vector<int> best_order_, prefix_targets_;
+  int bfs_start_ = 0;
+  std::vector<int> position_;         // li → p
+  std::vector<int> parent_;           // p → parent position or -1
+  std::vector<int> child_begin_;      // p → children [child_begin_[p], child_begin_[p+1]) in child_list_
+  std::vector<int> child_list_;
+  std::vector<int> tin_, tout_;       // preorder interval of each position's subtree
+
+  // Per-position tables of the net.
+  std::vector<int> key_begin_, key_size_;  // K(p) = key_list_[key_begin_[p] ..+ key_size_[p]]
+  std::vector<int> key_list_;
+  std::vector<int> choice_begin_;     // p → choices (0 = miss/exclusive, then shared gate entries)
+  std::vector<double> choice_weight_;
+  std::vector<int> choice_test_;      // bit of the choice's measurement in K(p), or -1
+  std::vector<int> set_begin_;        // p → [child slot][choice] bit in K(child), or -1
+  std::vector<int> set_bit_;
+  std::vector<int> remap_begin_;      // p → [child slot][bit of K(p)] bit in K(child), or -1
+  std::vector<int> remap_bit_;
+
+  // Net storage.
+  std::vector<std::int64_t> layer_begin_;  // p → first node id (size positions + 1)
+  std::vector<std::int64_t> edge_begin_;   // p → first edge
+  std::vector<std::uint64_t> keys_;
+  std::vector<double> alpha_, beta_;
+  std::vector<std::int32_t> edges_;
+  std::vector<double> row_accumulator_;    // per choice of the current position
+  std::vector<double> child_beta_, prefix_;  // per child slot
+  std::vector<std::int32_t> direct_;       // direct-address index of small key spaces, -1 = none
+  std::vector<Slot> slots_;
+  std::uint32_t generation_ = 0;
+  std::uint64_t mask_ = 0;
+  std::int64_t nodes_total_ = 0;
+
+  // Scratch.
+  std::vector<int> mark_, mark2_, count_, queue_, degree_, uf_;
+  std::vector<char> touched_, done_;
+};
+
+}  // namespace dabench

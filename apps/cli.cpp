@@ -1,0 +1,242 @@
+#include "apps/cli.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+
+#include <boost/program_options.hpp>
+#include <fmt/format.h>
+
+#include "harness/core/errors.hpp"
+#include "harness/core/experiment.hpp"
+#include "harness/core/heap_policy.hpp"
+#include "harness/core/json.hpp"
+#include "harness/multi_scan/registry.hpp"
+#include "harness/run/runner.hpp"
+#include "harness/single_scan/registry.hpp"
+#include "harness/single_scan/weights_csv.hpp"
+#include "harness/tracking/registry.hpp"
+
+namespace dabench {
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: dabench list\n"
+    "       dabench solve --algorithm SPEC --weights FILE [--format csv|json] [--pd P] [--lambda-fa L]\n"
+    "       dabench run EXPERIMENT.ini [--trials N] [--threads T] [--seed S] [--out DIR] [--resume|--force]\n"
+    "SPEC is NAME or NAME:key=value,key=value (see `dabench list`).\n";
+
+std::string joined_command_line(int argc, char** argv) {
+  std::string text;
+  for (int k = 0; k < argc; ++k) text += (k ? " " : "") + std::string(argv[k]);
+  return text;
+}
+
+// The command that finishes an interrupted run: the same words, --force/--resume replaced.
+std::string resume_command_line(int argc, char** argv) {
+  std::string text;
+  for (int k = 0; k < argc; ++k) {
+    const std::string word = argv[k];
+    if (word == "--force" || word == "--resume") continue;
+    text += (text.empty() ? "" : " ") + word;
+  }
+  return text + " --resume";
+}
+
+// Parses the options of one subcommand; po errors become InputError with the subcommand named.
+po::variables_map parse_command(const std::string& command, const po::options_description& options,
+                                const po::positional_options_description& positional, int argc, char** argv) {
+  po::variables_map values;
+  try {
+    po::store(po::command_line_parser(argc, argv).options(options).positional(positional).run(), values);
+    po::notify(values);
+  } catch (const po::error& error) {
+    throw InputError(fmt::format("{}: {}", command, error.what()));
+  }
+  return values;
+}
+
+fs::path experiments_folder() {
+  if (fs::is_directory("experiments")) return "experiments";
+  return fs::path(DABENCH_SOURCE_DIR) / "experiments";
+}
+
+int command_list() {
+  std::string out;
+  const auto describe = [&out](const auto& registry) {
+    if (registry.entries().empty()) out += "  (none registered)\n";
+    for (const auto& [name, entry] : registry.entries()) {
+      out += fmt::format("  {:<10} {}\n", name, entry.summary);
+      for (const auto& param : entry.defaults) out += fmt::format("      {:<16} = {:<10} {}\n", param.key, ParamList::format(param), param.doc);
+    }
+  };
+  out += "Algorithms (SPEC = name or name:key=value,...):\n";
+  describe(single_scan_registry());
+  out += "\nMulti-scan algorithms (for multi-scan scenarios):\n";
+  describe(multi_scan_registry());
+  out += "\nTrackers (for tracking scenarios):\n";
+  describe(tracker_registry());
+  out += "\nScenarios (parameters settable in an experiment's [scenario] and [sweep] sections):\n";
+  describe(scenario_registry());
+  out += "\nMulti-scan scenarios (run multi-scan algorithms; metrics against the truth):\n";
+  describe(multi_scan_scenario_registry());
+  out += "\nTracking scenarios (whole runs of K scans, for trackers):\n";
+  describe(tracking_scenario_registry());
+  const fs::path folder = experiments_folder();
+  out += fmt::format("\nExperiments (in {}):\n", folder.string());
+  std::set<fs::path> files;
+  std::error_code error;
+  for (const auto& file : fs::directory_iterator(folder, error)) {
+    if (file.path().extension() == ".ini") files.insert(file.path());
+  }
+  for (const auto& file : files) {
+    std::string description;
+    try {
+      description = load_experiment(file.string()).description;
+    } catch (const InputError& problem) {
+      description = fmt::format("(unreadable: {})", problem.what());
+    }
+    out += fmt::format("  {:<28} {}\n", file.filename().string(), description);
+  }
+  std::fputs(out.c_str(), stdout);
+  return 0;
+}
+
+int command_solve(int argc, char** argv) {
+  po::options_description options("solve options");
+  std::string spec, weights, format;
+  double pd = std::nan(""), lambda_fa = std::nan("");
+  options.add_options()
+      ("algorithm", po::value(&spec)->required(), "algorithm SPEC")
+      ("weights", po::value(&weights)->required(), "headerless CSV of psi, one row per target")
+      ("format", po::value(&format)->default_value("csv"), "csv or json")
+      ("pd", po::value(&pd), "detection probability, for algorithms that need it")
+      ("lambda-fa", po::value(&lambda_fa), "false-alarm density, for algorithms that need it");
+  parse_command("solve", options, po::positional_options_description(), argc, argv);
+  if (format != "csv" && format != "json") throw InputError(fmt::format("solve: --format must be csv or json, not '{}'", format));
+  if (!std::isnan(pd) && !(pd > 0.0 && pd < 1.0)) throw InputError(fmt::format("solve: --pd {} must be in (0, 1)", pd));
+  if (!std::isnan(lambda_fa) && !(lambda_fa > 0.0)) throw InputError(fmt::format("solve: --lambda-fa {} must be > 0", lambda_fa));
+
+  auto solver = make_single_scan_solver(spec);
+  SingleScanProblem problem = read_weights_csv(weights);
+  problem.context.pd = pd;
+  problem.context.lambda_fa = lambda_fa;
+  MarginalTable marginals;
+  SolveReport report;
+  solver->solve(problem, marginals, report);
+  if (!report.skipped.empty()) {
+    std::fprintf(stderr, "dabench: %s: skipped:%s (the algorithm refused this problem)\n", spec.c_str(), report.skipped.c_str());
+    return 3;
+  }
+  std::string out;
+  if (format == "csv") {
+    out = "target,measurement,probability\n";
+    for (int i = 0; i < marginals.targets(); ++i) {
+      for (int j = 0; j <= marginals.measurements(); ++j) out += fmt::format("{},{},{}\n", i + 1, j, marginals(i, j));
+    }
+  } else {
+    std::string rows = "[";
+    for (int i = 0; i < marginals.targets(); ++i) {
+      rows += i ? ",\n    [" : "\n    [";
+      for (int j = 0; j <= marginals.measurements(); ++j) rows += fmt::format("{}{}", j ? ", " : "", marginals(i, j));
+      rows += "]";
+    }
+    rows += "\n  ]";
+    JsonObject json;
+    json.add("algorithm", spec)
+        .add("targets", static_cast<long long>(marginals.targets()))
+        .add("measurements", static_cast<long long>(marginals.measurements()))
+        .add("iterations", static_cast<long long>(report.iterations))
+        .add("converged", report.converged)
+        .add("w_star", report.w_star);
+    if (std::isfinite(report.free_energy)) json.add("free_energy", report.free_energy);
+    json.add_raw("marginals", rows);
+    out = json.str();
+  }
+  std::fputs(out.c_str(), stdout);
+  return 0;
+}
+
+int command_run(int argc, char** argv, const std::string& command_line, const std::string& resume_line) {
+  po::options_description options("run options");
+  RunOptions run;
+  run.command_line = command_line;
+  std::int64_t trials = 0, seed = 0;
+  int threads = 0;
+  std::string out;
+  options.add_options()
+      ("experiment", po::value(&run.experiment_path)->required(), "experiment INI file")
+      ("trials", po::value(&trials), "Monte Carlo trials per point (overrides the file)")
+      ("threads", po::value(&threads), "OpenMP threads (default: all cores)")
+      ("seed", po::value(&seed), "master seed (overrides the file)")
+      ("out", po::value(&out), "output folder (overrides the file)")
+      ("resume", po::bool_switch(&run.resume), "finish the run in the output folder")
+      ("force", po::bool_switch(&run.force), "discard the run in the output folder");
+  po::positional_options_description positional;
+  positional.add("experiment", 1);
+  const po::variables_map values = parse_command("run", options, positional, argc, argv);
+  if (run.resume && run.force) throw InputError("run: --resume and --force exclude each other");
+  if (values.count("trials")) {
+    if (trials < 1) throw InputError(fmt::format("run: --trials {} must be >= 1", trials));
+    run.trials = trials;
+  }
+  if (values.count("threads")) {
+    if (threads < 1) throw InputError(fmt::format("run: --threads {} must be >= 1", threads));
+    run.threads = threads;
+  }
+  if (values.count("seed")) {
+    if (seed < 0) throw InputError(fmt::format("run: --seed {} must be >= 0", seed));
+    run.seed = static_cast<std::uint64_t>(seed);
+  }
+  if (values.count("out")) run.output = out;
+
+  const RunOutcome outcome = run_experiment(run);
+  if (outcome.interrupted) {
+    std::fprintf(stderr, "dabench: interrupted after %lld of %lld trials; finish with: %s\n",
+                 outcome.items_written, outcome.items_total, resume_line.c_str());
+    return 130;
+  }
+  std::string files = "trials.csv";
+  for (const std::string& file : outcome.item_files) files += ", " + file;
+  std::fprintf(stderr, "dabench: %lld trials done; results in %s/ (%s, summary.csv, meta.json)\n",
+               outcome.items_total, outcome.output.c_str(), files.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int cli_main(int argc, char** argv) {
+  retain_freed_heap_memory();
+  const std::string command = argc > 1 ? argv[1] : "";
+  try {
+    if (command == "list") {
+      if (argc > 2) throw InputError(fmt::format("list: unexpected argument '{}'", argv[2]));
+      return command_list();
+    }
+    if (command == "solve") return command_solve(argc - 1, argv + 1);
+    if (command == "run") {
+      return command_run(argc - 1, argv + 1, joined_command_line(argc, argv), resume_command_line(argc, argv));
+    }
+    if (command == "-h" || command == "--help" || command == "help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    throw InputError(command.empty() ? "missing command (list, solve or run; see dabench --help)"
+                                     : fmt::format("unknown command '{}' (list, solve or run; see dabench --help)", command));
+  } catch (const InputError& error) {
+    std::fprintf(stderr, "dabench: %s\n", error.what());
+    return 2;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "dabench: internal error: %s\n", error.what());
+    return 1;
+  }
+}
+
+}  // namespace dabench

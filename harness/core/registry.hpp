@@ -1,0 +1,69 @@
+#pragma once
+// Name → factory tables: the generic registry each problem kind instantiates for its algorithms
+// and scenarios (harness/<kind>/registry.hpp), and the entry built from a class that provides
+// `using Options = ...;` (a struct with bind() and validate()), `static constexpr
+// std::string_view kName`, `kSummary`, and a constructor from Options.
+// Registries are function-local statics, filled before main() by static objects of the
+// algorithm and scenario libraries (linked whole, so the linker never drops them).
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "harness/core/params.hpp"
+
+namespace dabench {
+
+template <class Product>
+class Registry {
+ public:
+  using Factory = std::function<std::unique_ptr<Product>(const std::vector<KeyValue>&)>;
+  using Resolver = std::function<std::vector<KeyValue>(const std::vector<KeyValue>&)>;
+  struct Entry {
+    std::string name;
+    std::string summary;
+    std::vector<ParamList::Entry> defaults;  // points into a static default Options object
+    Factory create;      // validated settings → object; throws InputError
+    Resolver resolve;    // settings → every parameter with its effective value, in bind order
+  };
+
+  void add(Entry entry) {
+    const std::string name = entry.name;
+    entries_.emplace(name, std::move(entry));
+  }
+  const Entry* find(std::string_view name) const {
+    const auto it = entries_.find(std::string(name));
+    return it == entries_.end() ? nullptr : &it->second;
+  }
+  const std::map<std::string, Entry>& entries() const { return entries_; }
+
+  std::string names() const {
+    std::string text;
+    for (const auto& [name, entry] : entries_) text += (text.empty() ? "" : ", ") + name;
+    return text;
+  }
+
+ private:
+  std::map<std::string, Entry> entries_;
+};
+
+template <class Made, class Product>
+typename Registry<Product>::Entry make_registry_entry() {
+  using Options = typename Made::Options;
+  return {std::string(Made::kName), std::string(Made::kSummary), default_entries<Options>(),
+          [](const std::vector<KeyValue>& settings) -> std::unique_ptr<Product> {
+            return std::make_unique<Made>(make_options<Options>(settings, Made::kName));
+          },
+          [](const std::vector<KeyValue>& settings) {
+            Options options = make_options<Options>(settings, Made::kName);
+            ParamList params;
+            options.bind(params);
+            std::vector<KeyValue> values;
+            for (const auto& entry : params.entries()) values.push_back({entry.key, ParamList::format(entry)});
+            return values;
+          }};
+}
+
+}  // namespace dabench

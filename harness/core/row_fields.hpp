@@ -1,0 +1,16 @@
+#pragma once
+// Fields shared by the rows every run kind writes (trials.csv, targets.csv, tracks.csv, ...).
+#include <string>
+
+#include "harness/core/solve_report.hpp"
+
+namespace dabench {
+
+// ',' then the value in its shortest round-trip form; ',' alone when it is NaN or infinite
+// (an empty field means "missing").
+void append_number(std::string& row, double value);
+
+// The status column: "ok", the "failed:<reason>" a runner recorded, or "skipped:<reason>".
+void append_status(std::string& row, const SolveReport& report);
+
+}  // namespace dabench

@@ -1,0 +1,211 @@
+#include "harness/run/run_plan.hpp"
+
+#include <omp.h>
+
+#include <fmt/format.h>
+
+#include "harness/core/csv.hpp"
+#include "harness/multi_scan/registry.hpp"
+#include "harness/single_scan/registry.hpp"
+#include "harness/tracking/registry.hpp"
+
+namespace dabench {
+
+namespace {
+
+std::string point_columns(const std::vector<KeyValue>& params) {
+  std::string header = "point";
+  for (const KeyValue& kv : params) {
+    header += ',';
+    append_csv_field(header, kv.key);
+  }
+  return header;
+}
+
+std::string_view kind_name(RunKind kind) {
+  switch (kind) {
+    case RunKind::single_scan: return "single-scan";
+    case RunKind::multi_scan: return "multi-scan";
+    case RunKind::tracking: return "tracking";
+  }
+  return {};
+}
+
+// A SPEC naming an algorithm of another kind than the scenario's: say so.
+std::string kind_hint(const std::string& spec, RunKind kind, const std::string& scenario) {
+  std::string name;
+  try {
+    name = parse_spec(spec).name;
+  } catch (const InputError&) {
+    return {};
+  }
+  const auto hint = [&](std::string_view what) {
+    return fmt::format(" ('{}' is a {}; scenario '{}' is {})", name, what, scenario, kind_name(kind));
+  };
+  if (kind != RunKind::single_scan && single_scan_registry().find(name) != nullptr) return hint("single-scan algorithm");
+  if (kind != RunKind::multi_scan && multi_scan_registry().find(name) != nullptr) return hint("multi-scan algorithm");
+  if (kind != RunKind::tracking && tracker_registry().find(name) != nullptr) return hint("tracker");
+  return {};
+}
+
+void check_spec(const std::string& spec, RunKind kind) {
+  switch (kind) {
+    case RunKind::single_scan: make_single_scan_solver(spec); return;
+    case RunKind::multi_scan: make_multi_scan_solver(spec); return;
+    case RunKind::tracking: make_tracker(spec); return;
+  }
+}
+
+}  // namespace
+
+const std::vector<std::string>& RunPlan::metric_columns() const {
+  switch (kind) {
+    case RunKind::multi_scan: return multi_scan_metric_columns();
+    case RunKind::tracking: return tracking_metric_columns();
+    case RunKind::single_scan: break;
+  }
+  return single_scan_metric_columns();
+}
+
+std::string RunPlan::trials_header() const {
+  std::string header = point_columns(point_params.front()) + ",trial,seed,algorithm,status";
+  for (const std::string& metric : metric_columns()) header += "," + metric;
+  return header + "\n";
+}
+
+std::vector<ItemFile> RunPlan::item_files() const {
+  const std::string point = point_columns(point_params.front());
+  switch (kind) {
+    case RunKind::multi_scan: return {{"targets.csv", point + ",trial,seed,algorithm,target,hpd,entropy\n"}};
+    case RunKind::tracking: {
+      std::vector<ItemFile> files = {
+          {"tracks.csv", point + ",trial,algorithm,track,confirmed,scan,g,g_dot,theta,theta_dot,"
+                                 "var_g,var_g_dot,var_theta,var_theta_dot\n"},
+          {"measurements.csv", point + ",trial,scan,r,r_dot,azimuth,origin_target,origin_path\n"}};
+      if (experiment.record_iterations) {
+        std::string header = point + ",trial,seed,algorithm,iteration";
+        for (const std::string& metric : tracking_iteration_metric_columns()) header += "," + metric;
+        files.push_back({"iterations.csv", header + "\n"});
+      }
+      return files;
+    }
+    case RunKind::single_scan: break;
+  }
+  return {};
+}
+
+std::string RunPlan::fingerprint() const {
+  // FNV-1a over everything that determines the rows.
+  std::uint64_t hash = 1469598103934665603ull;
+  const auto mix = [&hash](std::string_view text) {
+    for (const char c : text) {
+      hash ^= static_cast<unsigned char>(c);
+      hash *= 1099511628211ull;
+    }
+    hash ^= 0xff;
+    hash *= 1099511628211ull;
+  };
+  mix(experiment.scenario);
+  for (const auto& params : point_params) {
+    for (const KeyValue& kv : params) mix(kv.key + "=" + kv.value);
+  }
+  for (const auto& spec : specs) mix(spec);
+  mix(std::to_string(trials));
+  mix(std::to_string(seed));
+  if (experiment.record_iterations) mix("iterations");  // runs without it keep their fingerprint
+  return fmt::format("{:016x}", hash);
+}
+
+std::vector<std::string> RunPlan::point_row_prefixes() const {
+  std::vector<std::string> prefixes;
+  for (std::size_t p = 0; p < point_params.size(); ++p) {
+    std::string prefix = std::to_string(p);
+    for (const KeyValue& kv : point_params[p]) {
+      prefix += ',';
+      append_csv_field(prefix, kv.value);
+    }
+    prefixes.push_back(std::move(prefix));
+  }
+  return prefixes;
+}
+
+std::vector<std::string> RunPlan::spec_fields() const {
+  std::vector<std::string> fields;
+  for (const std::string& spec : specs) {
+    std::string field;
+    append_csv_field(field, spec);
+    fields.push_back(std::move(field));
+  }
+  return fields;
+}
+
+RunPlan make_run_plan(const RunOptions& options) {
+  RunPlan plan;
+  plan.experiment = load_experiment(options.experiment_path);
+  const Experiment& experiment = plan.experiment;
+  const std::string& path = experiment.path;
+  plan.trials = options.trials.value_or(experiment.trials);
+  if (plan.trials < 1) throw InputError(fmt::format("--trials must be >= 1 (got {})", plan.trials));
+  if (plan.trials > 0x7fffffff) throw InputError("--trials must be below 2^31");
+  plan.seed = options.seed.value_or(experiment.seed);
+  plan.threads = options.threads.value_or(omp_get_max_threads());
+  if (plan.threads < 1 || plan.threads > 1024) throw InputError(fmt::format("--threads must be in 1..1024 (got {})", plan.threads));
+  plan.output = options.output.value_or(experiment.output);
+
+  const auto* single_scan = scenario_registry().find(experiment.scenario);
+  const auto* multi_scan = multi_scan_scenario_registry().find(experiment.scenario);
+  const auto* tracking = tracking_scenario_registry().find(experiment.scenario);
+  if (single_scan == nullptr && multi_scan == nullptr && tracking == nullptr) {
+    std::string known = scenario_registry().names();
+    for (const std::string& more : {multi_scan_scenario_registry().names(), tracking_scenario_registry().names()}) {
+      if (!more.empty()) known += ", " + more;
+    }
+    throw InputError(fmt::format("{}: unknown scenario '{}' (known: {})", path, experiment.scenario, known));
+  }
+  plan.kind = multi_scan != nullptr ? RunKind::multi_scan : tracking != nullptr ? RunKind::tracking : RunKind::single_scan;
+  if (experiment.record_iterations && plan.kind != RunKind::tracking) {
+    throw InputError(fmt::format("{}: 'iterations = true' records tracker iterations, but scenario '{}' is {} "
+                                 "(remove the line)", path, experiment.scenario, kind_name(plan.kind)));
+  }
+  if (plan.kind != RunKind::single_scan && !experiment.references.empty()) {
+    throw InputError(fmt::format("{}: scenario '{}' is {}: its metrics are against the truth, so "
+                                 "'reference' lines are not used (remove them)", path, experiment.scenario,
+                                 kind_name(plan.kind)));
+  }
+  for (std::size_t p = 0; p < experiment.points.size(); ++p) {
+    try {
+      const std::vector<KeyValue>& settings = experiment.points[p];
+      plan.point_params.push_back(multi_scan != nullptr ? multi_scan->resolve(settings)
+                                  : tracking != nullptr ? tracking->resolve(settings)
+                                                        : single_scan->resolve(settings));
+    } catch (const InputError& error) {
+      throw InputError(fmt::format("{}: sweep point {}: {}", path, p, error.what()));
+    }
+  }
+  plan.point_settings = experiment.points;
+
+  for (const std::string& spec : experiment.references) {
+    const std::string text(trim(spec));
+    for (const auto& known : plan.specs) {
+      if (known == text) throw InputError(fmt::format("{}: reference '{}' given twice", path, text));
+    }
+    plan.specs.push_back(text);
+  }
+  plan.references = static_cast<int>(plan.specs.size());
+  for (const std::string& spec : experiment.algorithms) {
+    const std::string text(trim(spec));
+    bool duplicate = false;
+    for (const auto& known : plan.specs) duplicate = duplicate || known == text;
+    if (!duplicate) plan.specs.push_back(text);
+  }
+  for (const std::string& spec : plan.specs) {
+    try {
+      check_spec(spec, plan.kind);
+    } catch (const InputError& error) {
+      throw InputError(fmt::format("{}: {}{}", path, error.what(), kind_hint(spec, plan.kind, experiment.scenario)));
+    }
+  }
+  return plan;
+}
+
+}  // namespace dabench

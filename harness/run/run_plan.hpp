@@ -1,0 +1,55 @@
+#pragma once
+// A fully checked experiment: the resolved parameters of every sweep point and the algorithm
+// SPECs to run, built before any output is written. The scenario's kind decides the kind of
+// run: a single-scan scenario runs single-scan algorithms against a reference; a multi-scan
+// scenario runs multi-scan algorithms, measured against the scenario's truth (no reference),
+// and also writes targets.csv (one row per target); a tracking scenario runs trackers against
+// the truth and also writes tracks.csv and measurements.csv (harness/run/tracking_execution.hpp),
+// and iterations.csv when the experiment says `iterations = true` (an error for other kinds).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "harness/core/experiment.hpp"
+#include "harness/run/runner.hpp"
+
+namespace dabench {
+
+enum class RunKind { single_scan, multi_scan, tracking };
+
+// A per-item file beside trials.csv: its rows start with the point's prefix then `trial`, in
+// item order, so --resume can trim it to the items trials.csv holds.
+struct ItemFile {
+  std::string name;    // e.g. "targets.csv"
+  std::string header;  // with its newline
+};
+
+struct RunPlan {
+  Experiment experiment;
+  std::vector<std::vector<KeyValue>> point_settings;  // as written (fixed + swept)
+  std::vector<std::vector<KeyValue>> point_params;    // every scenario parameter, effective value
+  std::vector<std::string> specs;                     // references first, then algorithms
+  int references = 0;                                 // how many leading specs are references
+  RunKind kind = RunKind::single_scan;                // from the scenario's registry
+  std::int64_t trials = 0;
+  std::uint64_t seed = 0;
+  int threads = 1;
+  std::string output;
+
+  long long items() const { return static_cast<long long>(point_params.size()) * trials; }
+  const std::vector<std::string>& metric_columns() const;  // of trials.csv, by kind
+  std::string trials_header() const;
+  // The per-item files of this kind, in the order the writer fills them (before trials.csv):
+  // multi-scan: targets.csv; tracking: tracks.csv, measurements.csv and, with
+  // `iterations = true`, iterations.csv.
+  std::vector<ItemFile> item_files() const;
+  std::string fingerprint() const;  // identifies the run for --resume
+  // The leading fields of every row, precomputed once per run: "point,param values" per point,
+  // and the CSV-quoted SPEC per algorithm.
+  std::vector<std::string> point_row_prefixes() const;
+  std::vector<std::string> spec_fields() const;
+};
+
+RunPlan make_run_plan(const RunOptions& options);  // throws InputError
+
+}  // namespace dabench

@@ -1,0 +1,14 @@
+#pragma once
+// Reads the `--weights FILE` of `dabench solve`: headerless numeric CSV, one row per target,
+// one column per measurement, entry ψ_i(j) ≥ 0 (eq 11; ψ_i(0) = 1 implied).
+#include <string>
+
+#include "harness/single_scan/problem.hpp"
+
+namespace dabench {
+
+// Throws InputError "FILE:LINE: problem" for an unreadable or empty file, a non-numeric,
+// negative, NaN or infinite entry, or rows of different lengths.
+SingleScanProblem read_weights_csv(const std::string& path);
+
+}  // namespace dabench

@@ -1,0 +1,128 @@
+#pragma once
+// Scenario "bearings": the bearings-only experiment of Williams & Lau, "Multiple scan data
+// association by convex variational inference" (multiscan-convex-variational), Sec. IV.
+//
+// Model (paper's values are the defaults):
+//  - Region [−100, 100]²; four sensors at the corners, indexed counter-clockwise from
+//    (−100, −100): (−100,−100), (100,−100), (100,100), (−100,100). Seen from its corner, the
+//    region is exactly the 90° wedge of bearings [θ_k, θ_k + 90°] with θ_k = 0°, 90°, 180°, 270°.
+//  - Number of targets Poisson(mean_targets), known to the estimator (poisson_targets = 0 uses
+//    exactly mean_targets, e.g. one target for exact single-track checks). A draw with no
+//    target is a problem with no tracks (the runner records it as skipped:no_targets).
+//  - Targets are uniform on the region and static: the paper "refines locations" with every
+//    scan and describes no motion model, so positions do not change between scans.
+//  - Track initialisation: one sensor, uniformly at random among the four, measures the
+//    target's bearing with N(0, init_noise_deg²) noise; the track's particles represent the
+//    posterior π0(x) ∝ 1{x in region}·N(φ(x); φ_m, σ0²) (uniform prior × that bearing).
+//  - Scans: scans_per_sensor rounds of the four sensors in round-robin order
+//    (scan t uses sensor t mod 4), so 4 or 12 scans. In each scan every target is detected with
+//    probability pd, with bearing noise N(0, noise_deg²); false alarms are Poisson(clutter_mean)
+//    uniform over the sensor's 90° wedge; the measurements of a scan are shuffled.
+//  - Factors, eq (33) with constant Pd:  ψ_t(p, 0) = 1 − pd,
+//      ψ_t(p, j) = N(wrap(z_j − θ_k(x_p)); 0, σ²)·pd / λ_fa,  λ_fa = clutter_mean / (π/2) per
+//    radian, wrap to (−π, π] (the Gaussian on the wrapped difference; the wrapped-normal terms
+//    it drops are below e^{−(2π)²/(2σ²)}). No gating, except that a factor whose |difference|
+//    exceeds 37σ is stored as 0 instead of its value (< 1e−290, against 1 − pd ≥ 1e−3 for a
+//    miss): a negligible threshold that only saves the exp().
+//
+// Particles (parameter `particles`, N). Proposal g for the relative bearing φ ∈ [0, π/2] and
+// range r from the corner: φ ~ N(φ_m, σ0²) truncated to [0, π/2] (rejection near the mode,
+// Robert's exponential rejection in a far tail), r = L(φ)·√u with L(φ) = 200 / max(cos φ, sin φ)
+// the length of the ray inside the region. In the plane,
+//     g(x) = TN(φ; φ_m, σ0, [0, π/2]) · 2 / L(φ)²,
+// known exactly, so the importance weights ψ^i(p) = π0(x_p)/g(x_p) ∝ L(φ_p)² make the weighted
+// particles an exact (unbiased up to self-normalisation) representation of π0. Since L varies
+// little across a 0.1° fan, the weights are nearly equal (this is almost exact sampling).
+// Each track also gets a truth probe (harness/multi_scan/scenario.hpp): one more hypothesis at
+// the true position, last in the track, with prior ε·L(φ*)² (ε = probe_weight), and
+// density_scale N·g(x) for particles, N·g(x*)/ε for the probe (harness/multi_scan/particle_metrics.hpp).
+//
+// Default particle count: 10000. The posterior after the scans covers ~1 % of the initial
+// bearing line, so only that share of the particles carries its weight. Measured with
+// experiments/multiscan-particles.ini (one target per trial, where jpda-bp is exact Bayes, so
+// HPD values must be Uniform(0, 1) up to particle error; 1000 trials, seed 7, KS 5 % critical
+// value 0.043), KS distance D for particles = 300 / 1000 / 3000 / 10000:
+//    4 scans: 0.116 / 0.051 / 0.030 / 0.034      12 scans: 0.204 / 0.080 / 0.048 / 0.025
+// 10000 is the smallest of these counts that passes in both settings. What it costs each method:
+// bearings_trial in bench/multi_scan/bench_multi_scan.cpp, and the time_us columns of the runs
+// in results/multiscan/ (plots/multiscan_cost.py).
+//
+// Draw order (stable; a change alters every trial's numbers):
+//  1. the number of targets: poisson(mean_targets) (nothing if poisson_targets = 0);
+//  2. per target: uniform x, uniform y, uniform (initialising sensor), normal (its bearing
+//     noise), then per particle: the truncated normal's uniforms/normals, one uniform (range);
+//  3. per scan: per target bernoulli(pd) and, if detected, one normal; poisson(clutter_mean),
+//     one uniform per false alarm; Fisher–Yates shuffle (for k = M−1..1 one uniform).
+#include <Eigen/Core>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "harness/core/params.hpp"
+#include "harness/multi_scan/scenario.hpp"
+
+namespace dabench {
+
+struct BearingsOptions {
+  double mean_targets = 8.0;    // Poisson mean of the number of targets (paper: 8)
+  bool poisson_targets = true;  // false: exactly mean_targets targets (must then be an integer)
+  int particles = 10000;        // N particles per track (see the header)
+  double pd = 0.9;              // detection probability (paper: 0.9)
+  double clutter_mean = 1.0;    // false alarms per scan, uniform over the 90° wedge (paper: 1)
+  double noise_deg = 1.0;       // bearing noise s.d. of the scans, degrees (paper: 1)
+  double init_noise_deg = 0.1;  // s.d. of the initialising bearing, degrees (paper: 0.1)
+  int scans_per_sensor = 1;     // rounds of the four sensors: 1 → 4 scans, 3 → 12 (paper: 1, 3)
+  double probe_weight = 1e-6;   // ε: truth probe's prior relative to a particle at its place
+
+  void bind(ParamList& p) {
+    p.add("mean_targets", mean_targets, "mean number of targets (Poisson), >= 0");
+    p.add("poisson_targets", poisson_targets, "1: Poisson number of targets; 0: exactly mean_targets");
+    p.add("particles", particles, "particles per track, >= 1");
+    p.add("pd", pd, "detection probability, in (0, 1)");
+    p.add("clutter_mean", clutter_mean, "false alarms per scan (Poisson mean), > 0");
+    p.add("noise_deg", noise_deg, "bearing noise s.d. of the scans, degrees, > 0");
+    p.add("init_noise_deg", init_noise_deg, "s.d. of the initialising bearing, degrees, > 0");
+    p.add("scans_per_sensor", scans_per_sensor, "scans of each of the 4 sensors (round robin), >= 1");
+    p.add("probe_weight", probe_weight, "truth probe prior relative to a particle there, in (0, 1e-3]");
+  }
+  std::string validate() const;  // "" if valid, else which field breaks which rule
+};
+
+// What a draw contains besides the problem, for tests and pictures.
+struct BearingsDetails {
+  struct Target {
+    Eigen::Vector2d truth;
+    int init_sensor = 0;          // sensor of the initialising bearing
+    double init_bearing = 0.0;    // its measured bearing relative to the sensor's wedge, rad
+    Eigen::MatrixX2d particles;   // N + 1 rows: the particles, then the truth probe (= truth)
+    Vector proposal_density;      // g(x) at every row of `particles`
+  };
+  std::vector<Target> targets;
+  std::vector<int> scan_sensor;                  // per scan
+  std::vector<std::vector<double>> bearings;     // per scan: absolute bearing of column j+1, rad
+  std::vector<std::vector<int>> origin;          // per scan, per measurement: target or −1
+};
+
+class BearingsScenario final : public MultiScanScenario {
+ public:
+  using Options = BearingsOptions;
+  static constexpr std::string_view kName = "bearings";
+  static constexpr std::string_view kSummary =
+      "Sec. IV of Williams & Lau (multi-scan): 4 corner bearing sensors, particle tracks, Poisson(8) static targets";
+
+  static constexpr double kHalfWidth = 100.0;  // region [−100, 100]²
+  static Eigen::Vector2d sensor_position(int sensor);
+  static double wedge_start(int sensor);       // θ_k, rad
+  static double ray_length(double relative_bearing);  // L(φ)
+
+  explicit BearingsScenario(const Options& options);
+  void generate(RandomStream& rng, MultiScanSample& sample) const override;
+  // The same draw (same numbers); also fills `details` unless it is null.
+  void generate(RandomStream& rng, MultiScanSample& sample, BearingsDetails* details) const;
+  const Options& options() const { return options_; }
+
+ private:
+  Options options_;
+};
+
+}  // namespace dabench

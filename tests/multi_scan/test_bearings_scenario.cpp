@@ -1,0 +1,182 @@
+// Tests of the "bearings" scenario (multiscan-convex-variational, Sec. IV): draw statistics
+// against their sampling distributions (tolerance 5 standard errors, fixed seeds), eq (33)
+// against an independent evaluation and one hand-computed value, the particle representation
+// (region, wedge, weights ∝ L(φ)², exact proposal density) and determinism.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "harness/core/params.hpp"
+#include "scenarios/multi_scan/bearings.hpp"
+
+namespace {
+
+using dabench::BearingsDetails;
+using dabench::BearingsOptions;
+using dabench::BearingsScenario;
+using dabench::KeyValue;
+using dabench::MultiScanSample;
+using dabench::RandomStream;
+
+constexpr std::uint64_t kSeed = 20160401;
+constexpr double kPi = std::numbers::pi;
+
+BearingsOptions options_from(const std::vector<KeyValue>& settings) {
+  return dabench::make_options<BearingsOptions>(settings, "bearings");
+}
+
+double wrapped(double angle) { return std::remainder(angle, 2.0 * kPi); }
+
+}  // namespace
+
+TEST_CASE("bearings: target count false alarms and detections match their distributions", "[bearings]") {
+  const BearingsScenario scenario(options_from({{"particles", "1"}, {"scans_per_sensor", "3"}}));
+  constexpr int kDraws = 3000;
+  double targets = 0.0, target_squares = 0.0, false_alarms = 0.0, detections = 0.0;
+  int scans = 0;
+  MultiScanSample sample;
+  for (int k = 0; k < kDraws; ++k) {
+    RandomStream rng(kSeed, 0, static_cast<std::uint32_t>(k));
+    scenario.generate(rng, sample);
+    const double n = sample.problem.tracks();
+    targets += n;
+    target_squares += n * n;
+    false_alarms += sample.false_alarms;
+    detections += sample.detections;
+    scans += sample.problem.scan_count();
+    REQUIRE(sample.problem.scan_count() == 12);
+    REQUIRE(sample.problem.validate().empty());
+  }
+  const double mean = targets / kDraws;
+  CHECK(std::fabs(mean - 8.0) < 5.0 * std::sqrt(8.0 / kDraws));
+  CHECK(std::fabs(target_squares / kDraws - mean * mean - 8.0) < 1.0);  // Poisson: variance = mean
+  CHECK(std::fabs(false_alarms / scans - 1.0) < 5.0 * std::sqrt(1.0 / scans));
+  const double chances = targets * 12.0;  // target-scan pairs
+  CHECK(std::fabs(detections / chances - 0.9) < 5.0 * std::sqrt(0.9 * 0.1 / chances));
+}
+
+TEST_CASE("bearings: factors follow eq 33 and one value checked by hand", "[bearings]") {
+  const BearingsOptions options = options_from({{"particles", "50"}});
+  const BearingsScenario scenario(options);
+  MultiScanSample sample;
+  BearingsDetails details;
+  RandomStream rng(kSeed, 1, 0);
+  scenario.generate(rng, sample, &details);
+  REQUIRE(sample.problem.tracks() > 0);
+  REQUIRE(sample.problem.scan_count() == 4);
+  const double sd = kPi / 180.0;
+  const double clutter_density = 1.0 / (kPi / 2.0);
+  int checked = 0;
+  for (int t = 0; t < 4; ++t) {
+    REQUIRE(details.scan_sensor[t] == t);
+    const Eigen::Vector2d sensor = BearingsScenario::sensor_position(t);
+    for (int i = 0; i < sample.problem.tracks(); ++i) {
+      const auto& factor = sample.problem.scans[t].factor[i];
+      for (int h : {0, 17, 50}) {  // two particles and the truth probe
+        const Eigen::Vector2d x = details.targets[i].particles.row(h).transpose();
+        CHECK(factor(h, 0) == Approx(0.1));
+        for (int j = 1; j <= sample.problem.scans[t].measurements; ++j) {
+          const double difference = wrapped(details.bearings[t][j - 1] - std::atan2(x.y() - sensor.y(), x.x() - sensor.x()));
+          const double expected = std::exp(-0.5 * difference * difference / (sd * sd)) / (std::sqrt(2.0 * kPi) * sd) *
+                                  0.9 / clutter_density;
+          if (std::fabs(difference) > 37.0 * sd) {
+            CHECK(factor(h, j) == 0.0);
+          } else {
+            CHECK(factor(h, j) == Approx(expected).epsilon(1e-12));
+            ++checked;
+          }
+        }
+      }
+    }
+  }
+  CHECK(checked > 0);
+  // By hand: a bearing 1° (= σ) off the prediction gives 0.9·(π/2)/(√(2π)·π/180)·e^{−1/2}
+  // = 81/√(2π)·e^{−1/2} = 19.59963...
+  const double one_sigma = 0.9 / clutter_density / (std::sqrt(2.0 * kPi) * sd) * std::exp(-0.5);
+  CHECK(one_sigma == Approx(19.59963).epsilon(1e-6));
+}
+
+TEST_CASE("bearings: particles lie on the initialising bearing inside the region with weights L squared",
+          "[bearings]") {
+  const BearingsScenario scenario(options_from({{"particles", "400"}, {"poisson_targets", "0"}, {"mean_targets", "6"}}));
+  MultiScanSample sample;
+  BearingsDetails details;
+  RandomStream rng(kSeed, 2, 0);
+  scenario.generate(rng, sample, &details);
+  REQUIRE(sample.problem.tracks() == 6);
+  for (int i = 0; i < 6; ++i) {
+    const auto& target = details.targets[i];
+    REQUIRE(target.particles.rows() == 401);
+    REQUIRE(sample.truth_probe[i] == 400);
+    CHECK(target.particles.row(400).transpose() == target.truth);
+    const Eigen::Vector2d corner = BearingsScenario::sensor_position(target.init_sensor);
+    const double start = BearingsScenario::wedge_start(target.init_sensor);
+    double weighted_bearing = 0.0, weight_sum = 0.0;
+    for (int p = 0; p < 400; ++p) {
+      const Eigen::Vector2d x = target.particles.row(p).transpose();
+      CHECK(x.cwiseAbs().maxCoeff() <= 100.0 + 1e-9);
+      const double phi = wrapped(std::atan2(x.y() - corner.y(), x.x() - corner.x()) - start);
+      const double length = BearingsScenario::ray_length(phi);
+      CHECK(sample.problem.prior[i][p] == Approx(length * length / 40000.0).epsilon(1e-9));
+      CHECK(sample.density_scale[i][p] == Approx(400.0 * target.proposal_density[p]).epsilon(1e-12));
+      // g(x) = TN(φ)·2/L² ≤ the untruncated normal's peak / mass · 2/L²: at least positive.
+      CHECK(target.proposal_density[p] > 0.0);
+      weighted_bearing += sample.problem.prior[i][p] * phi;
+      weight_sum += sample.problem.prior[i][p];
+    }
+    // The bearing posterior is N(φ_m, 0.1°²) (up to the wedge): the weighted mean is within
+    // 5 standard errors (0.1°/√400) of the measured bearing unless the wedge truncates it.
+    const double measured = target.init_bearing;
+    if (measured > 0.01 && measured < kPi / 2 - 0.01) {
+      CHECK(std::fabs(weighted_bearing / weight_sum - measured) < 5.0 * (0.1 * kPi / 180.0) / 20.0);
+    }
+    // Truth probe: prior ε·L(φ*)², scale N·g(x*)/ε.
+    const double probe_phi = wrapped(std::atan2(target.truth.y() - corner.y(), target.truth.x() - corner.x()) - start);
+    const double probe_length = BearingsScenario::ray_length(probe_phi);
+    CHECK(sample.problem.prior[i][400] == Approx(1e-6 * probe_length * probe_length / 40000.0).epsilon(1e-9));
+    CHECK(sample.density_scale[i][400] == Approx(400.0 * target.proposal_density[400] / 1e-6).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("bearings: the proposal density integrates to one over the region", "[bearings]") {
+  // Σ_p 1/g(x_p) / N estimates the area the proposal covers (E_g[1/g] = |support|), which is
+  // the region minus nothing: 40000 within Monte Carlo error. Using particles of many tracks.
+  const BearingsScenario scenario(options_from({{"particles", "20000"}, {"poisson_targets", "0"}, {"mean_targets", "1"},
+                                                {"init_noise_deg", "30"}}));
+  MultiScanSample sample;
+  BearingsDetails details;
+  RandomStream rng(kSeed, 3, 0);
+  scenario.generate(rng, sample, &details);
+  double sum = 0.0, squares = 0.0;
+  for (int p = 0; p < 20000; ++p) {
+    const double inverse = 1.0 / details.targets[0].proposal_density[p];
+    sum += inverse;
+    squares += inverse * inverse;
+  }
+  const double mean = sum / 20000.0;
+  const double se = std::sqrt((squares / 20000.0 - mean * mean) / 20000.0);
+  CHECK(std::fabs(mean - 40000.0) < 5.0 * se);
+}
+
+TEST_CASE("bearings: the same stream gives the same draw", "[bearings]") {
+  const BearingsScenario scenario(options_from({{"particles", "30"}}));
+  MultiScanSample a, b;
+  RandomStream first(kSeed, 4, 7), second(kSeed, 4, 7);
+  scenario.generate(first, a);
+  scenario.generate(second, b);
+  REQUIRE(a.problem.tracks() == b.problem.tracks());
+  for (int i = 0; i < a.problem.tracks(); ++i) CHECK(a.problem.prior[i] == b.problem.prior[i]);
+  for (int t = 0; t < a.problem.scan_count(); ++t) {
+    for (int i = 0; i < a.problem.tracks(); ++i) CHECK(a.problem.scans[t].factor[i] == b.problem.scans[t].factor[i]);
+  }
+}
+
+TEST_CASE("bearings: invalid parameters are refused with the field named", "[bearings]") {
+  CHECK(BearingsOptions{.particles = 0}.validate().find("particles") != std::string::npos);
+  CHECK(BearingsOptions{.mean_targets = 2.5, .poisson_targets = false}.validate().find("integer") != std::string::npos);
+  CHECK(BearingsOptions{.pd = 1.0}.validate().find("pd") != std::string::npos);
+  CHECK(BearingsOptions{.clutter_mean = 0.0}.validate().find("clutter_mean") != std::string::npos);
+  CHECK(BearingsOptions{.scans_per_sensor = 0}.validate().find("scans_per_sensor") != std::string::npos);
+}

@@ -1,0 +1,217 @@
+// Tests of the JDT-VB tracker (algorithms/tracking/jdt_vb.hpp) and its track heads
+// (algorithms/tracking/jdt_vb_heads.hpp) on the OTHR model: heads from noiseless multipath detections,
+// the free energy's monotonicity per VB iteration, tracking quality against the truth, options.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <memory>
+
+#include "algorithms/tracking/jdt_vb.hpp"
+#include "algorithms/tracking/jdt_vb_heads.hpp"
+#include "harness/core/errors.hpp"
+#include "harness/core/random_stream.hpp"
+#include "harness/tracking/metrics.hpp"
+#include "harness/tracking/registry.hpp"
+#include "scenarios/tracking/othr.hpp"
+
+namespace {
+
+using dabench::othr::GroundState;
+using dabench::othr::kPathTable;
+
+const dabench::othr::OthrMeasurementModel kSensor(5.0, 0.001, 0.003);
+
+dabench::TrackHeadOptions head_options() {
+  dabench::TrackHeadOptions o;
+  o.threshold = Eigen::Vector3d(80.0, 0.005, 0.03);
+  o.prior_precision = Eigen::Vector4d(1e-6, 1.0, 1.0, 1.0 / (2e-4 * 2e-4));
+  o.gate = 9.0;
+  return o;
+}
+
+// Columns: the noiseless measurements of `x` on `paths`.
+Eigen::MatrixXd detections(const GroundState& x, const std::vector<int>& paths) {
+  Eigen::MatrixXd scan(3, paths.size());
+  for (std::size_t j = 0; j < paths.size(); ++j) scan.col(j) = dabench::othr::slant_measurement(x, kPathTable[paths[j]]);
+  return scan;
+}
+
+std::vector<int> all_columns(const Eigen::MatrixXd& scan) {
+  std::vector<int> c(scan.cols());
+  for (int j = 0; j < static_cast<int>(c.size()); ++j) c[j] = j;
+  return c;
+}
+
+dabench::TrackingScenarioSample draw(double pd, double clutter, int run) {
+  dabench::OthrOptions o;
+  o.pd = pd;
+  o.clutter = clutter;
+  dabench::TrackingScenarioSample sample;
+  dabench::RandomStream rng(2024, 0, static_cast<std::uint32_t>(run));
+  dabench::OthrScenario(o).generate(rng, sample);
+  return sample;
+}
+
+}  // namespace
+
+TEST_CASE("jdt-vb heads: four noiseless paths give one head at the true state with p(s=1) = 1", "[jdt_vb]") {
+  const GroundState x(1750.0, 0.1, 0.48, 8.7e-5);
+  const Eigen::MatrixXd scan = detections(x, {0, 1, 2, 3});
+  const auto heads = dabench::form_track_heads(scan, all_columns(scan), kSensor, head_options());
+  REQUIRE(heads.size() == 1);
+  CHECK(heads[0].members.size() == 4);
+  CHECK(heads[0].initial_active == 1.0);
+  CHECK(heads[0].mean[0] == Approx(1750.0).epsilon(1e-9));
+  CHECK(heads[0].mean[1] == Approx(0.1).epsilon(1e-7));
+  CHECK(heads[0].mean[2] == Approx(0.48).epsilon(1e-9));
+  CHECK(heads[0].mean[3] == Approx(0.0).margin(1e-12));  // ϑ̇ is not measured: the prior mean
+  // Each member's path is its own (EF and FE differ in azimuth, so the assignment is unique).
+  for (std::size_t j = 0; j < 4; ++j) CHECK(heads[0].paths[j] == heads[0].members[j]);
+  // P covers ϑ̇ by the prior only.
+  CHECK(std::sqrt(heads[0].covariance(3, 3)) == Approx(2e-4).epsilon(1e-6));
+}
+
+TEST_CASE("jdt-vb heads: two parallel targets inside one range threshold give two heads", "[jdt_vb]") {
+  // Table III targets 1 and 2 (50 km apart, same velocity and bearing): their 8 detections
+  // are pairwise within ρ in range rate and azimuth, and interleave in range.
+  const GroundState a(1700.0, 0.1, 0.48, 8.7e-5), b(1750.0, 0.1, 0.48, 8.7e-5);
+  Eigen::MatrixXd scan(3, 8);
+  scan << detections(a, {0, 1, 2, 3}), detections(b, {0, 1, 2, 3});
+  const auto heads = dabench::form_track_heads(scan, all_columns(scan), kSensor, head_options());
+  REQUIRE(heads.size() == 2);
+  std::vector<double> ranges{heads[0].mean[0], heads[1].mean[0]};
+  std::sort(ranges.begin(), ranges.end());
+  CHECK(ranges[0] == Approx(1700.0).epsilon(1e-9));
+  CHECK(ranges[1] == Approx(1750.0).epsilon(1e-9));
+}
+
+TEST_CASE("jdt-vb heads: an ambiguous pair starts a head for every path-shifted reading", "[jdt_vb]") {
+  // EE and FE both receive on the E layer: the same two measurements fit EF + FF (both on F)
+  // about 30 km further out. Both readings become heads with p(s = 1) = (2/4)².
+  const GroundState x(1800.0, -0.1, 0.5, 0.0);
+  const Eigen::MatrixXd scan = detections(x, {0, 2});
+  const auto heads = dabench::form_track_heads(scan, all_columns(scan), kSensor, head_options());
+  REQUIRE(heads.size() >= 2);
+  bool truth_found = false;
+  for (const auto& h : heads) {
+    CHECK(h.initial_active == 0.25);
+    truth_found = truth_found || std::abs(h.mean[0] - 1800.0) < 1e-6;
+  }
+  CHECK(truth_found);
+  // A lone measurement starts nothing; neither do two far apart.
+  Eigen::MatrixXd apart(3, 2);
+  apart << detections(x, {0}), detections(GroundState(1900.0, 0.2, 0.55, 0.0), {0});
+  CHECK(dabench::form_track_heads(apart, all_columns(apart), kSensor, head_options()).empty());
+}
+
+TEST_CASE("jdt-vb: the free energy never decreases over the VB iterations", "[jdt_vb]") {
+  for (const char* spec : {"jdt-vb", "jdt-vb:joint_fusion=0", "jdt-vb:delete_on_mean=1"}) {
+    auto tracker = dabench::make_tracker(spec);
+    for (int run = 0; run < 3; ++run) {
+      const auto sample = draw(0.75, 125.0, run);
+      dabench::TrackSet tracks;
+      dabench::SolveReport report;
+      tracker->run(sample.problem, tracks, report);
+      const auto& history = dynamic_cast<dabench::JdtVbTracker&>(*tracker).free_energy_history();
+      INFO(spec << " run " << run);
+      REQUIRE(history.size() >= 2);
+      CHECK(report.iterations == static_cast<int>(history.size()));
+      CHECK(report.free_energy == history.back());
+      for (std::size_t r = 1; r < history.size(); ++r) CHECK(history[r] >= history[r - 1] - 1e-9 * std::abs(history[r - 1]));
+      // It moves: the first iteration after the sequential pass is not already the optimum.
+      CHECK(history.back() > history.front());
+    }
+  }
+}
+
+TEST_CASE("jdt-vb: without clutter and with every path detecting, each target gets one accurate track", "[jdt_vb]") {
+  auto tracker = dabench::make_tracker("jdt-vb");
+  for (int run = 0; run < 3; ++run) {
+    const auto sample = draw(1.0, 0.0, run);
+    dabench::TrackSet tracks;
+    dabench::SolveReport report;
+    tracker->run(sample.problem, tracks, report);
+    REQUIRE(report.skipped.empty());
+    const auto m = dabench::compute_tracking_metrics(sample.truth, tracks, {});
+    INFO("run " << run);
+    CHECK(m.nvt == 4.0);
+    CHECK(m.nft == 0.0);
+    CHECK(m.tpd >= 0.95);
+    // Four paths with σ_r = 5 km each, smoothed over ~20 scans: well under σ_r.
+    CHECK(m.aee_range_km < 1.5);
+    CHECK(m.aee_bearing_rad < 1.5e-3);
+  }
+}
+
+TEST_CASE("jdt-vb: at pd = 0.75 and 125 clutter per scan it tracks as Table IV reports", "[jdt_vb]") {
+  // Table IV, JDT-VB at pd = 0.75, N_c = 125: NVT 3.80, TPD 0.97, NFT 0.57, AEE-R 1.59 km,
+  // AEE-B 0.58 mrad, MOSPA 10.4 km. Eight runs; bounds leave room for Monte Carlo spread.
+  auto tracker = dabench::make_tracker("jdt-vb");
+  std::vector<dabench::TrackingMetrics> runs;
+  for (int run = 0; run < 8; ++run) {
+    const auto sample = draw(0.75, 125.0, run);
+    dabench::TrackSet tracks;
+    dabench::SolveReport report;
+    tracker->run(sample.problem, tracks, report);
+    runs.push_back(dabench::compute_tracking_metrics(sample.truth, tracks, {}));
+  }
+  const auto m = dabench::mean_over_runs(runs);
+  CHECK(m.nvt >= 3.5);
+  CHECK(m.tpd >= 0.9);
+  CHECK(m.nft <= 1.0);
+  CHECK(m.aee_range_km < 2.0);
+  CHECK(m.aee_bearing_rad < 1.0e-3);
+  CHECK(m.mospa_km < 15.0);
+}
+
+TEST_CASE("jdt-vb: the same problem gives identical tracks", "[jdt_vb]") {
+  auto tracker = dabench::make_tracker("jdt-vb");
+  const auto sample = draw(0.4, 400.0, 5);
+  dabench::TrackSet first, second;
+  dabench::SolveReport report;
+  tracker->run(sample.problem, first, report);
+  const double energy = report.free_energy;
+  tracker->run(sample.problem, second, report);
+  CHECK(report.free_energy == energy);
+  REQUIRE(first.tracks.size() == second.tracks.size());
+  for (std::size_t t = 0; t < first.tracks.size(); ++t) {
+    CHECK(first.tracks[t].first_scan == second.tracks[t].first_scan);
+    CHECK(first.tracks[t].states == second.tracks[t].states);
+  }
+}
+
+TEST_CASE("jdt-vb: options are checked", "[jdt_vb]") {
+  CHECK_NOTHROW(dabench::make_tracker("jdt-vb:max_iterations=5,convergence=1e-3,dormant_pd=0.05"));
+  CHECK_THROWS_AS(dabench::make_tracker("jdt-vb:confirm=1.5"), dabench::InputError);
+  CHECK_THROWS_AS(dabench::make_tracker("jdt-vb:max_iterations=0"), dabench::InputError);
+  CHECK_THROWS_AS(dabench::make_tracker("jdt-vb:gate_probability=1"), dabench::InputError);
+  CHECK_THROWS_AS(dabench::make_tracker("jdt-vb:head_range=-1"), dabench::InputError);
+  CHECK_THROWS_AS(dabench::make_tracker("jdt-vb:no_such_option=1"), dabench::InputError);
+  // A problem without a multipath sensor is skipped, not a crash.
+  auto tracker = dabench::make_tracker("jdt-vb");
+  dabench::TrackingProblem empty;
+  dabench::TrackSet tracks;
+  dabench::SolveReport report;
+  tracker->run(empty, tracks, report);
+  CHECK(report.skipped == "problem_without_multipath_sensor");
+}
+
+TEST_CASE("jdt-vb: the iteration history holds the tracks before and after every VB iteration", "[jdt_vb]") {
+  auto tracker = dabench::make_tracker("jdt-vb");
+  std::vector<dabench::TrackSet> history;
+  tracker->record_iterations(&history);
+  const auto sample = draw(0.75, 125.0, 1);
+  dabench::TrackSet tracks;
+  dabench::SolveReport report;
+  tracker->run(sample.problem, tracks, report);
+  REQUIRE(history.size() == static_cast<std::size_t>(report.iterations) + 1);
+  const auto& energies = dynamic_cast<dabench::JdtVbTracker&>(*tracker).free_energy_history();
+  CHECK(std::isnan(history.front().objective));  // before the first iteration B is not defined
+  for (std::size_t r = 1; r < history.size(); ++r) CHECK(history[r].objective == energies[r - 1]);
+  // The last entry is the output; r = 0 is the sequential pass, whose estimates differ.
+  REQUIRE(history.back().tracks.size() == tracks.tracks.size());
+  for (std::size_t t = 0; t < tracks.tracks.size(); ++t) CHECK(history.back().tracks[t].states == tracks.tracks[t].states);
+  const auto before = dabench::compute_tracking_metrics(sample.truth, history.front(), {});
+  const auto after = dabench::compute_tracking_metrics(sample.truth, tracks, {});
+  CHECK(after.aee_range_km < before.aee_range_km);  // smoothing over the run beats filtering
+}
