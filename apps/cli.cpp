@@ -18,6 +18,7 @@
 #include "harness/run/runner.hpp"
 #include "harness/single_scan/registry.hpp"
 #include "harness/single_scan/weights_csv.hpp"
+#include "harness/tbd/registry.hpp"
 #include "harness/tracking/registry.hpp"
 
 namespace dabench {
@@ -83,12 +84,16 @@ int command_list() {
   describe(multi_scan_registry());
   out += "\nTrackers (for tracking scenarios):\n";
   describe(tracker_registry());
+  out += "\nTrack-before-detect trackers (for track-before-detect scenarios; frame by frame):\n";
+  describe(tbd_tracker_registry());
   out += "\nScenarios (parameters settable in an experiment's [scenario] and [sweep] sections):\n";
   describe(scenario_registry());
   out += "\nMulti-scan scenarios (run multi-scan algorithms; metrics against the truth):\n";
   describe(multi_scan_scenario_registry());
   out += "\nTracking scenarios (whole runs of K scans, for trackers):\n";
   describe(tracking_scenario_registry());
+  out += "\nTrack-before-detect scenarios (K image frames of J data cells; experiment [metrics]: GOSPA c, p, alpha):\n";
+  describe(tbd_scenario_registry());
   const fs::path folder = experiments_folder();
   out += fmt::format("\nExperiments (in {}):\n", folder.string());
   std::set<fs::path> files;

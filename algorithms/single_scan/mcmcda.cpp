@@ -12,21 +12,8 @@ std::string McmcdaOptions::validate() const {
   return {};
 }
 
-namespace {
-
-// splitmix64 finaliser (Steele, Lea & Flood, "Fast splittable pseudorandom number generators",
-// OOPSLA 2014): a bijection of 64-bit words with full avalanche.
-inline std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-}  // namespace
-
 std::uint64_t Mcmcda::stream_seed(std::uint64_t trial_seed, std::int64_t option_seed) {
-  return splitmix64(trial_seed ^ (0x9E3779B97F4A7C15ull * (static_cast<std::uint64_t>(option_seed) + 1u)));
+  return algorithm_stream_seed(trial_seed, option_seed);
 }
 
 void MatchingChain::build(const AssociationGraph& graph) {

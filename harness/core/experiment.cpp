@@ -154,6 +154,10 @@ Experiment load_experiment(const std::string& path) {
       set_value(fixed, key.substr(9), value);
       continue;
     }
+    if (key.rfind("metrics.", 0) == 0) {
+      set_value(experiment.metric_settings, key.substr(8), value);
+      continue;
+    }
     if (key.rfind("sweep.", 0) == 0) {
       const auto dot = key.rfind('.');
       const std::string section = key.substr(0, dot);
@@ -201,7 +205,7 @@ Experiment load_experiment(const std::string& path) {
       }
     } else {
       throw InputError(fmt::format("{}: unknown key '{}' (known: name, description, scenario, trials, seed, "
-                                   "output, reference, algorithm, iterations, [scenario], [sweep...])", path, key));
+                                   "output, reference, algorithm, iterations, [scenario], [metrics], [sweep...])", path, key));
     }
   }
   if (experiment.scenario.empty()) throw InputError(fmt::format("{}: missing 'scenario = NAME'", path));

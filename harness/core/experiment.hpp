@@ -18,6 +18,9 @@
 //   [scenario]                        # fixed scenario parameters (others keep defaults)
 //   rows = 2
 //
+//   [metrics]                         # options of the kind's metrics (track-before-detect:
+//   gospa_cutoff = 2                  #   GOSPA c, p, α); recorded in meta.json
+//
 //   [sweep]                           # a full-factorial block; [sweep.NAME] adds more blocks,
 //   spacing = 0:0.5:10                # whose points are concatenated in file order.
 //   pd = 0.3, 0.6, 0.9                # values: a comma list or start:step:stop (inclusive);
@@ -44,6 +47,7 @@ struct Experiment {
   std::vector<std::string> references;  // first that succeeds in a trial is the reference
   std::vector<std::string> algorithms;
   bool record_iterations = false;       // `iterations = true`: per-iteration metrics (tracking)
+  std::vector<KeyValue> metric_settings;  // [metrics]: checked against the kind's metric options
   std::vector<std::string> swept_keys;         // parameters that some block sweeps
   std::vector<std::vector<KeyValue>> points;   // scenario settings of each point (fixed + swept)
 };

@@ -29,6 +29,16 @@ Philox4x32::Block Philox4x32::generate(Block c, Key k) {
   return c;
 }
 
+std::uint64_t algorithm_stream_seed(std::uint64_t trial_seed, std::int64_t option_seed) {
+  // splitmix64 finaliser (Steele, Lea & Flood, "Fast splittable pseudorandom number
+  // generators", OOPSLA 2014): a bijection of 64-bit words with full avalanche.
+  std::uint64_t x = trial_seed ^ (0x9E3779B97F4A7C15ull * (static_cast<std::uint64_t>(option_seed) + 1u));
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
 RandomStream::RandomStream(std::uint64_t seed, std::uint32_t point, std::uint32_t trial)
     : key_{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)},
       counter_{0u, 0u, point, trial} {}

@@ -16,6 +16,21 @@ class Philox4x32 {
   static Block generate(Block counter, Key key);
 };
 
+// Identity of the trial a problem belongs to. Stochastic algorithms (MCMCDA, the particle
+// trackers) draw from RandomStream(mix(seed, their own seed option), point, trial), so their
+// output depends only on the trial, never on the thread that runs it. `dabench solve` uses
+// {0, 0, 0}.
+struct TrialKey {
+  std::uint64_t seed = 0;
+  std::uint32_t point = 0;
+  std::uint32_t trial = 0;
+};
+
+// The master seed of an algorithm's own stream for trial seed `trial_seed` and the algorithm's
+// `seed` option: splitmix64(trial_seed ^ (0x9E3779B97F4A7C15 · (option_seed + 1))), so runs with
+// different `seed` options draw independent numbers on the same trial.
+std::uint64_t algorithm_stream_seed(std::uint64_t trial_seed, std::int64_t option_seed);
+
 class RandomStream {
  public:
   RandomStream(std::uint64_t seed, std::uint32_t point, std::uint32_t trial);

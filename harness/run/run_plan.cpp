@@ -7,6 +7,8 @@
 #include "harness/core/csv.hpp"
 #include "harness/multi_scan/registry.hpp"
 #include "harness/single_scan/registry.hpp"
+#include "harness/tbd/metrics.hpp"
+#include "harness/tbd/registry.hpp"
 #include "harness/tracking/registry.hpp"
 
 namespace dabench {
@@ -27,6 +29,7 @@ std::string_view kind_name(RunKind kind) {
     case RunKind::single_scan: return "single-scan";
     case RunKind::multi_scan: return "multi-scan";
     case RunKind::tracking: return "tracking";
+    case RunKind::tbd: return "track-before-detect";
   }
   return {};
 }
@@ -45,6 +48,7 @@ std::string kind_hint(const std::string& spec, RunKind kind, const std::string& 
   if (kind != RunKind::single_scan && single_scan_registry().find(name) != nullptr) return hint("single-scan algorithm");
   if (kind != RunKind::multi_scan && multi_scan_registry().find(name) != nullptr) return hint("multi-scan algorithm");
   if (kind != RunKind::tracking && tracker_registry().find(name) != nullptr) return hint("tracker");
+  if (kind != RunKind::tbd && tbd_tracker_registry().find(name) != nullptr) return hint("track-before-detect tracker");
   return {};
 }
 
@@ -53,6 +57,7 @@ void check_spec(const std::string& spec, RunKind kind) {
     case RunKind::single_scan: make_single_scan_solver(spec); return;
     case RunKind::multi_scan: make_multi_scan_solver(spec); return;
     case RunKind::tracking: make_tracker(spec); return;
+    case RunKind::tbd: make_tbd_tracker(spec); return;
   }
 }
 
@@ -62,6 +67,7 @@ const std::vector<std::string>& RunPlan::metric_columns() const {
   switch (kind) {
     case RunKind::multi_scan: return multi_scan_metric_columns();
     case RunKind::tracking: return tracking_metric_columns();
+    case RunKind::tbd: return tbd_metric_columns();
     case RunKind::single_scan: break;
   }
   return single_scan_metric_columns();
@@ -89,6 +95,11 @@ std::vector<ItemFile> RunPlan::item_files() const {
       }
       return files;
     }
+    case RunKind::tbd:
+      return {{"steps.csv", point + ",trial,seed,algorithm,k,n_objects,n_estimates,gospa,gospa_p2,localisation,missed,"
+                                    "false,time_us\n"},
+              {"estimates.csv", point + ",trial,algorithm,k,label,existence,x,y,vx,vy\n"},
+              {"frames.csv", point + ",trial,k,column,row,z1,z2\n"}};
     case RunKind::single_scan: break;
   }
   return {};
@@ -113,6 +124,7 @@ std::string RunPlan::fingerprint() const {
   mix(std::to_string(trials));
   mix(std::to_string(seed));
   if (experiment.record_iterations) mix("iterations");  // runs without it keep their fingerprint
+  for (const KeyValue& kv : experiment.metric_settings) mix("metrics." + kv.key + "=" + kv.value);
   return fmt::format("{:016x}", hash);
 }
 
@@ -155,14 +167,30 @@ RunPlan make_run_plan(const RunOptions& options) {
   const auto* single_scan = scenario_registry().find(experiment.scenario);
   const auto* multi_scan = multi_scan_scenario_registry().find(experiment.scenario);
   const auto* tracking = tracking_scenario_registry().find(experiment.scenario);
-  if (single_scan == nullptr && multi_scan == nullptr && tracking == nullptr) {
+  const auto* tbd = tbd_scenario_registry().find(experiment.scenario);
+  if (single_scan == nullptr && multi_scan == nullptr && tracking == nullptr && tbd == nullptr) {
     std::string known = scenario_registry().names();
-    for (const std::string& more : {multi_scan_scenario_registry().names(), tracking_scenario_registry().names()}) {
+    for (const std::string& more : {multi_scan_scenario_registry().names(), tracking_scenario_registry().names(),
+                                    tbd_scenario_registry().names()}) {
       if (!more.empty()) known += ", " + more;
     }
     throw InputError(fmt::format("{}: unknown scenario '{}' (known: {})", path, experiment.scenario, known));
   }
-  plan.kind = multi_scan != nullptr ? RunKind::multi_scan : tracking != nullptr ? RunKind::tracking : RunKind::single_scan;
+  plan.kind = multi_scan != nullptr ? RunKind::multi_scan
+              : tracking != nullptr ? RunKind::tracking
+              : tbd != nullptr      ? RunKind::tbd
+                                    : RunKind::single_scan;
+  if (!experiment.metric_settings.empty()) {
+    if (plan.kind != RunKind::tbd) {
+      throw InputError(fmt::format("{}: scenario '{}' is {}, whose metrics have no [metrics] options (remove the "
+                                   "section)", path, experiment.scenario, kind_name(plan.kind)));
+    }
+    try {
+      make_options<TbdMetricsOptions>(experiment.metric_settings, "[metrics]");
+    } catch (const InputError& error) {
+      throw InputError(fmt::format("{}: {}", path, error.what()));
+    }
+  }
   if (experiment.record_iterations && plan.kind != RunKind::tracking) {
     throw InputError(fmt::format("{}: 'iterations = true' records tracker iterations, but scenario '{}' is {} "
                                  "(remove the line)", path, experiment.scenario, kind_name(plan.kind)));
@@ -177,6 +205,7 @@ RunPlan make_run_plan(const RunOptions& options) {
       const std::vector<KeyValue>& settings = experiment.points[p];
       plan.point_params.push_back(multi_scan != nullptr ? multi_scan->resolve(settings)
                                   : tracking != nullptr ? tracking->resolve(settings)
+                                  : tbd != nullptr      ? tbd->resolve(settings)
                                                         : single_scan->resolve(settings));
     } catch (const InputError& error) {
       throw InputError(fmt::format("{}: sweep point {}: {}", path, p, error.what()));

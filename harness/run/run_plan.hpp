@@ -5,7 +5,10 @@
 // scenario runs multi-scan algorithms, measured against the scenario's truth (no reference),
 // and also writes targets.csv (one row per target); a tracking scenario runs trackers against
 // the truth and also writes tracks.csv and measurements.csv (harness/run/tracking_execution.hpp),
-// and iterations.csv when the experiment says `iterations = true` (an error for other kinds).
+// and iterations.csv when the experiment says `iterations = true` (an error for other kinds);
+// a track-before-detect scenario runs TBD trackers frame by frame and also writes steps.csv,
+// estimates.csv and frames.csv (harness/run/tbd_execution.hpp). The experiment's [metrics]
+// lines set the kind's metric options (track-before-detect only; an error for other kinds).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,7 +18,7 @@
 
 namespace dabench {
 
-enum class RunKind { single_scan, multi_scan, tracking };
+enum class RunKind { single_scan, multi_scan, tracking, tbd };
 
 // A per-item file beside trials.csv: its rows start with the point's prefix then `trial`, in
 // item order, so --resume can trim it to the items trials.csv holds.
@@ -41,7 +44,7 @@ struct RunPlan {
   std::string trials_header() const;
   // The per-item files of this kind, in the order the writer fills them (before trials.csv):
   // multi-scan: targets.csv; tracking: tracks.csv, measurements.csv and, with
-  // `iterations = true`, iterations.csv.
+  // `iterations = true`, iterations.csv; track-before-detect: steps.csv, estimates.csv, frames.csv.
   std::vector<ItemFile> item_files() const;
   std::string fingerprint() const;  // identifies the run for --resume
   // The leading fields of every row, precomputed once per run: "point,param values" per point,

@@ -27,9 +27,11 @@
 #include "harness/run/run_folder.hpp"
 #include "harness/run/run_plan.hpp"
 #include "harness/run/single_scan_execution.hpp"
+#include "harness/run/tbd_execution.hpp"
 #include "harness/run/tracking_execution.hpp"
 #include "harness/single_scan/marginal_errors.hpp"
 #include "harness/single_scan/registry.hpp"
+#include "harness/tbd/registry.hpp"
 #include "harness/tracking/registry.hpp"
 
 namespace dabench {
@@ -58,6 +60,13 @@ const std::vector<std::string>& tracking_iteration_metric_columns() {
   static const std::vector<std::string> columns = {"nvt",          "tpd",          "nft",          "false_tracks",
                                                    "ghost_tracks", "broken_targets", "ttl_scans", "aee_range_km",
                                                    "aee_bearing_mrad", "mospa_km", "free_energy"};
+  return columns;
+}
+
+const std::vector<std::string>& tbd_metric_columns() {
+  static const std::vector<std::string> columns = {"n_steps",   "gospa",     "gospa_p2",     "localisation",
+                                                   "missed",    "false",     "n_objects",    "n_estimates",
+                                                   "step_time_us", "iterations", "converged"};
   return columns;
 }
 
@@ -155,6 +164,10 @@ std::string meta_json(const RunPlan& plan, const RunOptions& options, const std:
       .add("wall_seconds", wall_seconds)
       .add("work_fraction", work_fraction);
   if (plan.kind == RunKind::tracking) meta.add_raw("tracking_metrics", tracking_metrics_json(TrackingMetricsOptions{}));
+  if (plan.kind == RunKind::tbd) {
+    meta.add_raw("tbd_metrics",
+                 tbd_metrics_json(make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
+  }
   if (plan.experiment.record_iterations) meta.add("record_iterations", true);
   return meta.str();
 }
@@ -195,6 +208,14 @@ RunOutcome run_experiment(const RunOptions& options) {
     const auto* entry = tracking_scenario_registry().find(plan.experiment.scenario);
     for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
     const TrackingExecution execution(plan, std::move(scenarios), TrackingMetricsOptions{});
+    busy_seconds = run_blocks(execution, writer, progress, plan.threads, first_block, skip_in_first, total_items,
+                              items_finished);
+  } else if (plan.kind == RunKind::tbd) {
+    std::vector<std::unique_ptr<TbdScenario>> scenarios;
+    const auto* entry = tbd_scenario_registry().find(plan.experiment.scenario);
+    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
+    const TbdExecution execution(plan, std::move(scenarios),
+                                 make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]"));
     busy_seconds = run_blocks(execution, writer, progress, plan.threads, first_block, skip_in_first, total_items,
                               items_finished);
   } else if (plan.kind == RunKind::multi_scan) {

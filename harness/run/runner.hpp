@@ -46,5 +46,7 @@ const std::vector<std::string>& tracking_metric_columns();
 // Of iterations.csv (tracking runs with `iterations = true`): tracking_metric_columns() up to
 // mospa_km, then free_energy (the recorded track set's objective).
 const std::vector<std::string>& tracking_iteration_metric_columns();
+// Of trials.csv for track-before-detect runs (harness/run/tbd_execution.hpp).
+const std::vector<std::string>& tbd_metric_columns();
 
 }  // namespace dabench

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "harness/core/matrix_types.hpp"
+#include "harness/core/random_stream.hpp"
 
 namespace dabench {
 
@@ -20,15 +21,6 @@ namespace dabench {
 struct ScanContext {
   double pd = std::numeric_limits<double>::quiet_NaN();         // detection probability
   double lambda_fa = std::numeric_limits<double>::quiet_NaN();  // false-alarm density
-};
-
-// Identity of the trial a problem belongs to. Stochastic algorithms (MCMCDA) draw from
-// RandomStream(mix(seed, their own seed option), point, trial), so their output depends only
-// on the trial, never on the thread that runs it. `dabench solve` uses {0, 0, 0}.
-struct TrialKey {
-  std::uint64_t seed = 0;
-  std::uint32_t point = 0;
-  std::uint32_t trial = 0;
 };
 
 struct SingleScanProblem {

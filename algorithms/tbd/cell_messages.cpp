@@ -1,0 +1,421 @@
+#include "algorithms/tbd/cell_messages.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "harness/core/grow_buffer.hpp"
+
+namespace dabench {
+
+namespace {
+
+constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
+
+double log_sum_exp(const std::vector<double>& values, int count, double extra) {
+  double top = extra;
+  for (int i = 0; i < count; ++i) top = std::max(top, values[i]);
+  if (top == kMinusInfinity) return kMinusInfinity;
+  double sum = std::exp(extra - top);
+  for (int i = 0; i < count; ++i) sum += std::exp(values[i] - top);
+  return top + std::log(sum);
+}
+
+// log N(z; μ, s I₂) in R².
+double log_isotropic_normal(double dx, double dy, double s) {
+  return -std::log(2.0 * std::numbers::pi * s) - 0.5 * (dx * dx + dy * dy) / s;
+}
+
+}  // namespace
+
+void CellMessages::configure(const TbdSensor& sensor, double amplitude, double support_radius) {
+  sensor_ = &sensor;
+  support_radius_ = support_radius;
+  // μ_j and c_j as functions of g_j (problem.hpp: D1 and D2).
+  const CellContribution unit = [&] {
+    TbdSensor centred = sensor;
+    centred.x_min = centred.y_min = 0.0;
+    return centred.contribution(0, 0, 0.5 * sensor.cell_size, 0.5 * sensor.cell_size, amplitude);  // g = 1
+  }();
+  mean_per_spread_ = unit.mean.x();
+  variance_per_spread_ = sensor.signal == TbdSignal::fluctuating ? unit.variance : 0.0;
+  variance_per_spread2_ = sensor.signal == TbdSignal::fluctuating ? 0.0 : unit.variance;
+}
+
+bool CellMessages::run(const TbdSensor& sensor, double amplitude, const Eigen::Matrix2Xd& frame,
+                       const std::vector<ParticleObject*>& objects, const CellMessageOptions& options) {
+  configure(sensor, amplitude, options.support_radius);
+  frame_ = &frame;
+  const int count = static_cast<int>(objects.size());
+  objects_.assign(objects.begin(), objects.end());
+  if (static_cast<int>(work_.size()) < count) work_.resize(count);
+  for (int n = 0; n < count; ++n) prepare(*objects[n], work_[n]);
+  if (options.exact) {
+    std::vector<int> reach(sensor.cells(), 0);
+    for (int n = 0; n < count; ++n) {
+      const CellWindow& w = work_[n].window;
+      for (int row = w.row_begin; row < w.row_end; ++row) {
+        for (int column = w.column_begin; column < w.column_end; ++column) {
+          if (++reach[row * sensor.columns + column] > 2) return false;
+        }
+      }
+    }
+  }
+  totals_.resize(sensor.cells());
+  if (options.serial && !options.exact && options.interaction) {
+    // Serial schedule: the totals always hold every PO's newest message; PO n takes its own
+    // out, computes its κ̃ against the others, then puts its new extrinsic β back.
+    std::fill(totals_.begin(), totals_.end(), CellTotals{});
+    for (int n = 0; n < count; ++n) {
+      moments(*objects[n], work_[n], true);
+      accumulate(work_[n], 1.0);
+    }
+    for (int l = 1; l <= options.iterations; ++l) {
+      for (int n = 0; n < count; ++n) {
+        accumulate(work_[n], -1.0);
+        std::fill(work_[n].terms.begin(), work_[n].terms.end(), CellTerms{});
+        gaussian_log_ratios(*objects[n], work_[n], true, true);
+        moments(*objects[n], work_[n], false);
+        accumulate(work_[n], 1.0);
+      }
+    }
+    for (int n = 0; n < count; ++n) belief(*objects[n], work_[n]);
+    return true;
+  }
+  for (int l = 1; l <= options.iterations; ++l) {
+    // β^(ℓ) moments of every PO, then the per-cell totals, then every PO's λ^(ℓ).
+    for (int n = 0; n < count; ++n) moments(*objects[n], work_[n], l == 1);
+    std::fill(totals_.begin(), totals_.end(), CellTotals{});
+    for (int n = 0; n < count; ++n) accumulate(work_[n], 1.0);
+    if (options.exact) {
+      exact_log_ratios(objects);
+    } else {
+      for (int n = 0; n < count; ++n) gaussian_log_ratios(*objects[n], work_[n], options.interaction, true);
+    }
+  }
+  for (int n = 0; n < count; ++n) belief(*objects[n], work_[n]);
+  return true;
+}
+
+void CellMessages::outgoing_field() {
+  std::fill(totals_.begin(), totals_.end(), CellTotals{});
+  for (std::size_t n = 0; n < objects_.size(); ++n) {
+    moments(*objects_[n], work_[n], false);
+    accumulate(work_[n], 1.0);
+  }
+}
+
+double CellMessages::evaluate(const ParticleObject& object, Work& work) {
+  std::fill(work.terms.begin(), work.terms.end(), CellTerms{});  // its own terms: not in the field
+  gaussian_log_ratios(object, work, true, false);
+  belief(object, work);
+  return work.log_odds;
+}
+
+void CellMessages::add_to_field(const ParticleObject& object, const Work& work) {
+  // Belief moments: weights w_i exp(Σ_j λ_ij), existence r̃.
+  const int p = object.size();
+  const CellWindow& w = work.window;
+  const double existence = 1.0 / (1.0 + std::exp(-work.log_odds));
+  shifted_.resize(p);
+  double top = kMinusInfinity;
+  for (int i = 0; i < p; ++i) top = std::max(top, shifted_[i] = std::log(object.weight[i]) + work.total[i]);
+  double sum = 0.0;
+  for (int i = 0; i < p; ++i) sum += shifted_[i] = std::exp(shifted_[i] - top);
+  for (int c = 0; c < w.cells(); ++c) {
+    const double* gx = &work.spread_x[static_cast<std::size_t>(c % w.columns()) * p];
+    const double* gy = &work.spread_y[static_cast<std::size_t>(c / w.columns()) * p];
+    double sum_m = 0.0, sum_c = 0.0, sum_mm = 0.0;
+    for (int i = 0; i < p; ++i) {
+      const double g = gx[i] * gy[i];
+      const double m = mean_per_spread_ * g;
+      sum_m += shifted_[i] * m;
+      sum_c += shifted_[i] * (variance_per_spread_ + variance_per_spread2_ * g) * g;
+      sum_mm += shifted_[i] * m * m;
+    }
+    const double scale = existence / sum;
+    const double mean = scale * sum_m;
+    CellTotals& total = totals_[(w.row_begin + c / w.columns()) * sensor_->columns + w.column_begin + c % w.columns()];
+    total.mean_x += mean;
+    total.v_xx += scale * (sum_c + sum_mm) - mean * mean;
+    total.v_yy += scale * sum_c;
+  }
+}
+
+void CellMessages::prepare(const ParticleObject& object, Work& work) const {
+  const TbdSensor& s = *sensor_;
+  const int p = object.size();
+  double x_low = std::numeric_limits<double>::infinity(), x_high = -x_low, y_low = x_low, y_high = -x_low;
+  for (int i = 0; i < p; ++i) {
+    x_low = std::min(x_low, object.x[i]);
+    x_high = std::max(x_high, object.x[i]);
+    y_low = std::min(y_low, object.y[i]);
+    y_high = std::max(y_high, object.y[i]);
+  }
+  // Cells whose centre x_min + (c + ½)Δ lies in [low − radius, high + radius].
+  const auto first = [&](double low, double origin, int limit) {
+    return std::clamp(static_cast<int>(std::ceil((low - support_radius_ - origin) / s.cell_size - 0.5)), 0, limit);
+  };
+  const auto last = [&](double high, double origin, int limit) {
+    return std::clamp(static_cast<int>(std::floor((high + support_radius_ - origin) / s.cell_size - 0.5)) + 1, 0, limit);
+  };
+  CellWindow& w = work.window;
+  w.column_begin = first(x_low, s.x_min, s.columns);
+  w.column_end = std::max(w.column_begin, last(x_high, s.x_min, s.columns));
+  w.row_begin = first(y_low, s.y_min, s.rows);
+  w.row_end = std::max(w.row_begin, last(y_high, s.y_min, s.rows));
+  if (p == 0) w.column_end = w.column_begin;
+
+  // g_j(p) = exp(−(c_x − p_x)²/(2σ_h²)) · exp(−(c_y − p_y)²/(2σ_h²)), tabulated per axis.
+  const double scale = -0.5 / s.spread_variance;
+  grow_buffer(work.spread_x, static_cast<std::size_t>(w.columns()) * p);
+  grow_buffer(work.spread_y, static_cast<std::size_t>(w.rows()) * p);
+  for (int c = 0; c < w.columns(); ++c) {
+    const double centre = s.centre_x(w.column_begin + c);
+    double* g = &work.spread_x[static_cast<std::size_t>(c) * p];
+    for (int i = 0; i < p; ++i) g[i] = std::exp(scale * (centre - object.x[i]) * (centre - object.x[i]));
+  }
+  for (int r = 0; r < w.rows(); ++r) {
+    const double centre = s.centre_y(w.row_begin + r);
+    double* g = &work.spread_y[static_cast<std::size_t>(r) * p];
+    for (int i = 0; i < p; ++i) g[i] = std::exp(scale * (centre - object.y[i]) * (centre - object.y[i]));
+  }
+  const std::size_t pairs = static_cast<std::size_t>(w.cells()) * p;
+  grow_buffer(work.own_factor, pairs);
+  std::fill_n(work.own_factor.begin(), pairs, 1.0);  // κ^(0) ≡ 1
+  work.total.assign(p, 0.0);
+  work.terms.assign(w.cells(), CellTerms{});
+}
+
+void CellMessages::moments(const ParticleObject& object, Work& work, bool from_prior) {
+  const CellWindow& w = work.window;
+  const int p = object.size();
+  const double r = object.existence;
+  // β(x^(i), 1) ∝ w r Π_{j'≠j} κ̃ ratio = B_i · (κ̃(0)/κ̃(x^(i),1) at j), B_i = w r exp(Σ_j λ),
+  // against β(0) ∝ 1 − r; one shift for every cell (the own-cell factor is bounded, header).
+  double shift = std::log1p(-r);
+  if (!from_prior) {
+    shifted_.resize(p);
+    for (int i = 0; i < p; ++i) shift = std::max(shift, shifted_[i] = std::log(object.weight[i] * r) + work.total[i]);
+    for (int i = 0; i < p; ++i) shifted_[i] = std::exp(shifted_[i] - shift);
+  }
+  const double absent = from_prior ? 1.0 - r : std::exp(std::log1p(-r) - shift);  // b^0, unnormalised
+  for (int c = 0; c < w.cells(); ++c) {
+    const double* gx = &work.spread_x[static_cast<std::size_t>(c % w.columns()) * p];
+    const double* gy = &work.spread_y[static_cast<std::size_t>(c / w.columns()) * p];
+    const double* own = &work.own_factor[static_cast<std::size_t>(c) * p];
+    double mass = absent;
+    double sum_m = 0.0, sum_c = 0.0, sum_mm = 0.0;
+    for (int i = 0; i < p; ++i) {
+      const double b = from_prior ? object.weight[i] * r : shifted_[i] * own[i];
+      const double g = gx[i] * gy[i];
+      const double m = mean_per_spread_ * g;
+      const double variance = (variance_per_spread_ + variance_per_spread2_ * g) * g;
+      mass += b;
+      sum_m += b * m;
+      sum_c += b * variance;
+      sum_mm += b * m * m;
+    }
+    // μ_j(x) = (m, 0): μ_{n,j} = (E m, 0), R_{n,j} = E[c] I + diag(E m², 0).
+    CellTerms& t = work.terms[c];
+    t.mean_x = sum_m / mass;
+    t.mean_y = 0.0;
+    t.r_xx = (sum_c + sum_mm) / mass;
+    t.r_xy = 0.0;
+    t.r_yy = sum_c / mass;
+  }
+}
+
+void CellMessages::accumulate(const Work& work, double sign) {
+  const CellWindow& w = work.window;
+  for (int c = 0; c < w.cells(); ++c) {
+    const CellTerms& t = work.terms[c];
+    CellTotals& total = totals_[(w.row_begin + c / w.columns()) * sensor_->columns + w.column_begin + c % w.columns()];
+    total.mean_x += sign * t.mean_x;
+    total.mean_y += sign * t.mean_y;
+    total.v_xx += sign * (t.r_xx - t.mean_x * t.mean_x);
+    total.v_xy += sign * (t.r_xy - t.mean_x * t.mean_y);
+    total.v_yy += sign * (t.r_yy - t.mean_y * t.mean_y);
+  }
+}
+
+void CellMessages::gaussian_log_ratios(const ParticleObject& object, Work& work, bool interaction, bool own_factors) {
+  const TbdSensor& s = *sensor_;
+  const CellWindow& w = work.window;
+  const int p = object.size();
+  std::fill(work.total.begin(), work.total.end(), 0.0);
+  // Σ_j λ = −½ Σ_j log(det_j/det0_j) − ½ Σ_j (quad_j − quad0_j): the determinant ratios are
+  // multiplied along a window row (each is at most (1 + c_max/σ²)², so a row cannot overflow)
+  // and their log taken once per row and particle.
+  work_product_.resize(p);
+  for (int row = 0; row < w.rows(); ++row) {
+    std::fill(work_product_.begin(), work_product_.end(), 1.0);
+    for (int column = 0; column < w.columns(); ++column) {
+      const int c = row * w.columns() + column;
+      const int cell = (w.row_begin + row) * s.columns + w.column_begin + column;
+      CellTerms& t = work.terms[c];
+      // κ̃(0): e = z − Σ_{n'≠n} μ_{n',j}, V = C_ε + Σ_{n'≠n} (R − μμᵀ)  (eqs 5, 9 with r_n = 0)
+      t.e_x = (*frame_)(0, cell);
+      t.e_y = (*frame_)(1, cell);
+      t.v_xx = t.v_yy = s.noise_variance;
+      t.v_xy = 0.0;
+      if (interaction) {
+        const CellTotals& total = totals_[cell];
+        t.e_x -= total.mean_x - t.mean_x;
+        t.e_y -= total.mean_y - t.mean_y;
+        t.v_xx += total.v_xx - (t.r_xx - t.mean_x * t.mean_x);
+        t.v_xy += total.v_xy - (t.r_xy - t.mean_x * t.mean_y);
+        t.v_yy += total.v_yy - (t.r_yy - t.mean_y * t.mean_y);
+      }
+      const double det0 = t.v_xx * t.v_yy - t.v_xy * t.v_xy;
+      const double quad0 = (t.e_x * t.e_x * t.v_yy - 2.0 * t.e_x * t.e_y * t.v_xy + t.e_y * t.e_y * t.v_xx) / det0;
+      const double* gx = &work.spread_x[static_cast<std::size_t>(column) * p];
+      const double* gy = &work.spread_y[static_cast<std::size_t>(row) * p];
+      double* own = &work.own_factor[static_cast<std::size_t>(c) * p];
+      for (int i = 0; i < p; ++i) {
+        // κ̃(x, 1): mean + μ_j(x), covariance + c_j(x) I.
+        const double g = gx[i] * gy[i];
+        const double ex = t.e_x - mean_per_spread_ * g;
+        const double extra = (variance_per_spread_ + variance_per_spread2_ * g) * g;
+        const double a = t.v_xx + extra;
+        const double d = t.v_yy + extra;
+        const double det = a * d - t.v_xy * t.v_xy;
+        const double ratio = det / det0;
+        const double half_quad = 0.5 * ((ex * ex * d - 2.0 * ex * t.e_y * t.v_xy + t.e_y * t.e_y * a) / det - quad0);
+        // κ̃(0)/κ̃(x,1) = exp(−λ) = sqrt(det/det0) exp(½(quad − quad0))
+        if (own_factors) own[i] = std::sqrt(ratio) * std::exp(half_quad);
+        work_product_[i] *= ratio;
+        work.total[i] -= half_quad;
+      }
+    }
+    for (int i = 0; i < p; ++i) work.total[i] -= 0.5 * std::log(work_product_[i]);
+  }
+}
+
+double CellMessages::log_ratio_at(const Work& work, double px, double py) const {
+  const TbdSensor& s = *sensor_;
+  const CellWindow& w = work.window;
+  const double scale = -0.5 / s.spread_variance;
+  double sum = 0.0;
+  for (int c = 0; c < w.cells(); ++c) {
+    const CellTerms& t = work.terms[c];
+    const double dx = s.centre_x(w.column_begin + c % w.columns()) - px;
+    const double dy = s.centre_y(w.row_begin + c / w.columns()) - py;
+    const double g = std::exp(scale * (dx * dx + dy * dy));
+    const double det0 = t.v_xx * t.v_yy - t.v_xy * t.v_xy;
+    const double quad0 = (t.e_x * t.e_x * t.v_yy - 2.0 * t.e_x * t.e_y * t.v_xy + t.e_y * t.e_y * t.v_xx) / det0;
+    const double ex = t.e_x - mean_per_spread_ * g;
+    const double extra = (variance_per_spread_ + variance_per_spread2_ * g) * g;
+    const double a = t.v_xx + extra;
+    const double d = t.v_yy + extra;
+    const double det = a * d - t.v_xy * t.v_xy;
+    const double quad = (ex * ex * d - 2.0 * ex * t.e_y * t.v_xy + t.e_y * t.e_y * a) / det;
+    sum += -0.5 * std::log(det / det0) - 0.5 * (quad - quad0);
+  }
+  return sum;
+}
+
+bool CellMessages::exact_log_ratios(const std::vector<ParticleObject*>& objects) {
+  const TbdSensor& s = *sensor_;
+  const int count = static_cast<int>(objects.size());
+  const double noise = s.noise_variance;
+  // Which PO reaches each cell besides n (at most one other: checked in run()).
+  std::vector<int> first(s.cells(), -1), second(s.cells(), -1);
+  std::vector<int> slot_first(s.cells(), -1), slot_second(s.cells(), -1);
+  for (int n = 0; n < count; ++n) {
+    const CellWindow& w = work_[n].window;
+    for (int c = 0; c < w.cells(); ++c) {
+      const int cell = (w.row_begin + c / w.columns()) * s.columns + w.column_begin + c % w.columns();
+      if (first[cell] < 0) {
+        first[cell] = n;
+        slot_first[cell] = c;
+      } else {
+        second[cell] = n;
+        slot_second[cell] = c;
+      }
+    }
+  }
+  // The other PO's β_{n',j} weights (normalised, absent last), from its current λ.
+  std::vector<double> other_weight, other_mean, other_variance;
+  const auto extrinsic = [&](int m, int c) {
+    const ParticleObject& other = *objects[m];
+    const Work& work = work_[m];
+    const int p = other.size();
+    other_weight.resize(p + 1);
+    const double* own = &work.own_factor[static_cast<std::size_t>(c) * p];
+    for (int i = 0; i < p; ++i) other_weight[i] = std::log(other.weight[i] * other.existence * own[i]) + work.total[i];
+    other_weight[p] = std::log1p(-other.existence);
+    const double log_norm = log_sum_exp(other_weight, p + 1, kMinusInfinity);
+    for (double& v : other_weight) v = std::exp(v - log_norm);
+  };
+  std::vector<std::vector<double>> next(count);
+  for (int n = 0; n < count; ++n) next[n].assign(work_[n].own_factor.size(), 0.0);
+  for (int n = 0; n < count; ++n) {
+    const ParticleObject& object = *objects[n];
+    const Work& work = work_[n];
+    const CellWindow& w = work.window;
+    const int p = object.size();
+    for (int c = 0; c < w.cells(); ++c) {
+      const int column = w.column_begin + c % w.columns();
+      const int row = w.row_begin + c / w.columns();
+      const int cell = row * s.columns + column;
+      const double zx = (*frame_)(0, cell), zy = (*frame_)(1, cell);
+      const int other = first[cell] == n ? second[cell] : first[cell];
+      const int other_slot = first[cell] == n ? slot_second[cell] : slot_first[cell];
+      const ParticleObject* o = other >= 0 ? objects[other] : nullptr;
+      const int q = o != nullptr ? o->size() : 0;
+      if (o != nullptr) {
+        extrinsic(other, other_slot);
+        other_mean.resize(q);
+        other_variance.resize(q);
+        for (int i = 0; i < q; ++i) {
+          const double g = s.spread(column, row, o->x[i], o->y[i]);
+          other_mean[i] = mean_per_spread_ * g;
+          other_variance[i] = (variance_per_spread_ + variance_per_spread2_ * g) * g;
+        }
+      }
+      // κ(0) and κ(x, 1) as sums over the other PO's states (letter eq (5)).
+      const auto kappa = [&](double m, double variance) {
+        double sum = (o != nullptr ? other_weight[q] : 1.0) *
+                     std::exp(log_isotropic_normal(zx - m, zy, noise + variance));
+        for (int i = 0; i < q; ++i) {
+          sum += other_weight[i] *
+                 std::exp(log_isotropic_normal(zx - m - other_mean[i], zy, noise + variance + other_variance[i]));
+        }
+        return sum;
+      };
+      const double absent = std::log(kappa(0.0, 0.0));
+      const double* gx = &work.spread_x[static_cast<std::size_t>(c % w.columns()) * p];
+      const double* gy = &work.spread_y[static_cast<std::size_t>(c / w.columns()) * p];
+      double* lambda = &next[n][static_cast<std::size_t>(c) * p];  // λ here, exp(−λ) below
+      for (int i = 0; i < p; ++i) {
+        const double g = gx[i] * gy[i];
+        lambda[i] = std::log(kappa(mean_per_spread_ * g, (variance_per_spread_ + variance_per_spread2_ * g) * g)) - absent;
+      }
+    }
+  }
+  for (int n = 0; n < count; ++n) {
+    Work& work = work_[n];
+    const int p = objects[n]->size();
+    std::fill(work.total.begin(), work.total.end(), 0.0);
+    for (int c = 0; c < work.window.cells(); ++c) {
+      for (int i = 0; i < p; ++i) {
+        const double lambda = next[n][static_cast<std::size_t>(c) * p + i];
+        work.total[i] += lambda;
+        work.own_factor[static_cast<std::size_t>(c) * p + i] = std::exp(-lambda);
+      }
+    }
+  }
+  return true;
+}
+
+void CellMessages::belief(const ParticleObject& object, Work& work) {
+  const int p = object.size();
+  // r̃/(1 − r̃) = r Σ_i w_i exp(Λ_i) / (1 − r)
+  shifted_.resize(p);
+  for (int i = 0; i < p; ++i) shifted_[i] = std::log(object.weight[i]) + work.total[i];
+  work.log_odds = std::log(object.existence) - std::log1p(-object.existence) + log_sum_exp(shifted_, p, kMinusInfinity);
+}
+
+}  // namespace dabench

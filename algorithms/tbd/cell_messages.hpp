@@ -1,0 +1,138 @@
+#pragma once
+// The iterative message passing of TBD-BP between potential objects (POs) and data cells
+// (tbd-bp-supplement, Sec. 1; tbd-bp-model.md §3.3), on particle POs:
+//
+//  β^(ℓ)_{n,j}(y) ∝ α_n(y) Π_{j'≠j} κ^(ℓ−1)_{n,j'}(y)              (κ^(0) ≡ 1, so β^(1) = α)
+//  μ^(ℓ)_{n,j} = ∫ μ_j(x) β^(ℓ)_{n,j}(x,1) dx,  R^(ℓ)_{n,j} = ∫ (C_j(x) + μ_j μ_jᵀ) β^(ℓ)_{n,j}(x,1) dx
+//  κ̃^(ℓ)_{n,j}(y) = N(z_j; r μ_j(x) + Σ_{n'≠n} μ_{n',j}, r C_j(x) + C_ε + Σ_{n'≠n} (R_{n',j} − μ_{n',j}μ_{n',j}ᵀ))
+//                                                                     (supplement eqs (5), (9))
+// The sums over n' ≠ n come from per-cell totals M_j = Σ_n μ_{n,j}, V_j = Σ_n (R_{n,j} − μμᵀ)
+// minus PO n's own term, so an iteration costs O(Σ_n P_n |W_n|) — linear in the number of POs
+// (P_n particles, W_n the PO's window of cells). Everything is carried as log-ratios
+// λ_{n,j}(x) = log κ̃_{n,j}(x,1) − log κ̃_{n,j}(0), the only form β and the belief need:
+// b^(i)_{n,j} ∝ w^(i) r exp(Σ_{j'≠j} λ_{n,j'}(x^(i))), b^0_{n,j} ∝ 1 − r.
+//
+// Window: the cells whose centre lies within `support_radius` of the PO's particles' bounding
+// box; outside it μ_j(x) and C_j(x) are taken as zero (then the cell's κ̃ ratio is 1). With
+// the default radius of 4σ_h, g_j ≤ e^{−8} ≈ 3e-4 there (C_j ≤ 0.01 at γ = 60 against C_ε = 1).
+//
+// Variants (the same passes): `interaction = false` drops the Σ_{n'≠n} terms, so each PO sees
+// the cells alone (the non-interacting update of TBD-MB); `exact = true` replaces κ̃ by the
+// exact κ of the letter's eq (5), a sum over the other POs' particles and existence — only for
+// cells that at most two POs reach (the supplement's toy); run() returns false otherwise.
+//
+// New POs (TbdBp, one per cell) do not take part in run(): after it, outgoing_field() forms
+// the field they see — per cell the totals of the run's POs' next messages β^(L+1)_{n,j} —
+// and evaluate() runs one new PO against the field (its own term is not in it), with κ̃;
+// add_to_field() then adds an accepted new PO's belief, so the next new PO sees it (a serial
+// schedule over the new POs; see tbd_bp.hpp for why).
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "algorithms/tbd/particle_object.hpp"
+#include "harness/tbd/problem.hpp"
+
+namespace dabench {
+
+struct CellWindow {
+  int column_begin = 0, column_end = 0;  // [begin, end)
+  int row_begin = 0, row_end = 0;
+  int columns() const { return column_end - column_begin; }
+  int rows() const { return row_end - row_begin; }
+  int cells() const { return columns() * rows(); }
+};
+
+struct CellMessageOptions {
+  int iterations = 2;          // L
+  double support_radius = 0.0; // window margin, m (set by the tracker: 4σ_h by default)
+  bool interaction = true;     // false: Σ_{n'≠n} terms dropped (TBD-MB)
+  bool exact = false;          // exact κ of eq (5) (at most two POs per cell)
+  // Schedule: flooding (every PO's β^(ℓ) from the others' κ̃^(ℓ−1)), or serial (POs in the
+  // given order, each against the others' newest messages; Gaussian, interacting only).
+  bool serial = false;
+};
+
+class CellMessages {
+ public:
+  // Per cell of a PO's window: the moments of its last β (eqs 5, 9) and its last κ̃.
+  struct CellTerms {
+    double mean_x = 0.0, mean_y = 0.0;          // μ_{n,j}
+    double r_xx = 0.0, r_xy = 0.0, r_yy = 0.0;  // R_{n,j}
+    // κ̃_{n,j}(0) = N(z_j; z_j − e, V): e = z_j − Σ_{n'≠n} μ_{n',j}, V = C_ε + Σ_{n'≠n} (R − μμᵀ);
+    // κ̃_{n,j}(x,1) adds μ_j(x) to the mean and C_j(x) to V.
+    double e_x = 0.0, e_y = 0.0, v_xx = 0.0, v_xy = 0.0, v_yy = 0.0;
+  };
+  struct Work {  // one PO's state in the passes
+    CellWindow window;
+    std::vector<double> spread_x;  // g along x: [window column][particle]
+    std::vector<double> spread_y;  // g along y: [window row][particle]
+    std::vector<double> own_factor;  // exp(−λ_{n,j}(x^(i))) = κ̃(0)/κ̃(x^(i),1): [window cell][particle]
+    std::vector<double> total;     // Σ_j λ_{n,j}(x^(i))
+    std::vector<CellTerms> terms;  // per window cell
+    double log_odds = 0.0;
+  };
+
+  // L iterations over `objects` on one frame. Afterwards total_log_ratio(n)[i] =
+  // Σ_j λ^(L)_{n,j}(x^(i)) and existence_log_odds(n) is the belief's log r̃/(1 − r̃).
+  // Returns false (and computes nothing) if `exact` is set and a cell is reached by more than
+  // two POs.
+  bool run(const TbdSensor& sensor, double amplitude, const Eigen::Matrix2Xd& frame,
+           const std::vector<ParticleObject*>& objects, const CellMessageOptions& options);
+
+  const std::vector<double>& total_log_ratio(int n) const { return work_[n].total; }
+  double existence_log_odds(int n) const { return work_[n].log_odds; }
+  const CellWindow& window(int n) const { return work_[n].window; }
+  // Window cell c of PO n (row-major in the window: c = (row − row_begin)·columns + column − column_begin).
+  const CellTerms& cell_terms(int n, int c) const { return work_[n].terms[c]; }
+  // λ^(L)_{n,j}(x^(i)) at window cell c.
+  double log_ratio(int n, int c, int i) const {
+    return -std::log(work_[n].own_factor[static_cast<std::size_t>(c) * work_[n].total.size() + i]);
+  }
+
+  // The field new POs see (after run()): per cell, Σ over the run's POs of the moments of
+  // their messages β^(L+1)_{n,j} (from the final κ̃), plus each added new PO's belief.
+  void outgoing_field();
+  // Sets the sensor, μ_j/C_j and the window margin; run() calls it. Then prepare() fills a
+  // PO's window and spread tables (once for POs whose particles do not move: new POs).
+  void configure(const TbdSensor& sensor, double amplitude, double support_radius);
+  void prepare(const ParticleObject& object, Work& work) const;
+  // One new PO, prepared, against the field (κ̃, interacting) of the last run()'s frame: fills
+  // Σ_j λ and the log-odds in `work` and returns the belief's log r̃/(1 − r̃).
+  double evaluate(const ParticleObject& object, Work& work);
+  // Adds the belief of an evaluated PO (existence r̃ = logistic(work.log_odds)) to the field.
+  void add_to_field(const ParticleObject& object, const Work& work);
+  // Σ_j λ_{n,j} at a position not among the particles of an evaluated PO, under the messages
+  // evaluate() used: for the particles drawn when a new PO becomes a legacy PO.
+  double log_ratio_at(const Work& work, double px, double py) const;
+
+ private:
+  struct CellTotals {
+    double mean_x = 0.0, mean_y = 0.0;
+    double v_xx = 0.0, v_xy = 0.0, v_yy = 0.0;
+  };
+
+  // β moments of a PO per window cell: α (from_prior), else the extrinsic β from its λ.
+  void moments(const ParticleObject& object, Work& work, bool from_prior);
+  // Adds (sign = +1) or removes the PO's cell terms to or from totals_.
+  void accumulate(const Work& work, double sign);
+  // λ of every particle and window cell: Σ_j λ in work.total and, with own_factors, exp(−λ)
+  // per pair (what the next β moments divide out).
+  void gaussian_log_ratios(const ParticleObject& object, Work& work, bool interaction, bool own_factors);
+  bool exact_log_ratios(const std::vector<ParticleObject*>& objects);
+  void belief(const ParticleObject& object, Work& work);
+
+  const TbdSensor* sensor_ = nullptr;
+  const Eigen::Matrix2Xd* frame_ = nullptr;
+  double support_radius_ = 0.0;
+  // μ_j(x) = (mean_per_spread · g, 0), c_j(x) = variance_per_spread · g + variance_per_spread2 · g²
+  double mean_per_spread_ = 0.0, variance_per_spread_ = 0.0, variance_per_spread2_ = 0.0;
+  std::vector<Work> work_;
+  std::vector<const ParticleObject*> objects_;  // of the last run()
+  std::vector<CellTotals> totals_;  // per cell of the frame: the Σ_n of eqs (5), (9)
+  std::vector<double> shifted_;       // scratch: one PO's (log) weights
+  std::vector<double> work_product_;  // scratch: determinant ratios along a window row
+};
+
+}  // namespace dabench

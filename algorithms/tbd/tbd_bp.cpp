@@ -1,0 +1,192 @@
+#include "algorithms/tbd/tbd_bp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "harness/tbd/registry.hpp"
+
+namespace dabench {
+
+namespace {
+
+double logistic(double log_odds) { return 1.0 / (1.0 + std::exp(-log_odds)); }
+
+}  // namespace
+
+std::string TbdBpOptions::validate() const {
+  if (iterations < 1 || iterations > 20) return "iterations must be in 1..20";
+  if (particles < 10 || particles > 1000000) return "particles must be in 10..1e6";
+  if (birth_grid < 1 || birth_grid > 16) return "birth_grid must be in 1..16";
+  if (!(support_sigmas >= 1.0 && support_sigmas <= 10.0)) return "support_sigmas must be in [1, 10]";
+  if (!(detection_threshold > 0.0 && detection_threshold < 1.0)) return "detection_threshold must be in (0, 1)";
+  if (!(pruning_threshold >= 0.0 && pruning_threshold < detection_threshold)) {
+    return "pruning_threshold must be in [0, detection_threshold)";
+  }
+  return {};
+}
+
+void TbdBp::start(const TbdProblem& problem) {
+  problem_ = &problem;
+  rng_ = RandomStream(algorithm_stream_seed(problem.trial_key.seed, options_.seed), problem.trial_key.point,
+                      problem.trial_key.trial);
+  next_label_ = 0;
+  legacy_.clear();
+  make_new_objects();
+  // The new POs' particles never move: their windows and spread tables are made once.
+  messages_.configure(problem.sensor, problem.amplitude, support_radius());
+  birth_work_.resize(births_.size());
+  for (std::size_t b = 0; b < births_.size(); ++b) messages_.prepare(births_[b], birth_work_[b]);
+}
+
+double TbdBp::support_radius() const {
+  return options_.support_sigmas * std::sqrt(problem_->sensor.spread_variance);
+}
+
+// One new PO per cell: a Q × Q midpoint quadrature of the cell (velocities unused by the
+// messages), r⁻ = (μ_B/J)/(1 + μ_B/J). The same for every step of a run.
+void TbdBp::make_new_objects() {
+  const TbdSensor& s = problem_->sensor;
+  const double birth = problem_->filter.birth_mean / s.cells();
+  if (!(birth > 0.0)) {
+    births_.clear();
+    return;
+  }
+  const int q = options_.birth_grid;
+  births_.resize(s.cells());
+  for (int row = 0; row < s.rows; ++row) {
+    for (int column = 0; column < s.columns; ++column) {
+      ParticleObject& o = births_[row * s.columns + column];
+      o.resize(q * q);
+      o.existence = birth / (1.0 + birth);
+      for (int a = 0; a < q; ++a) {
+        for (int b = 0; b < q; ++b) {
+          const int i = a * q + b;
+          o.x[i] = s.x_min + (column + (b + 0.5) / q) * s.cell_size;
+          o.y[i] = s.y_min + (row + (a + 0.5) / q) * s.cell_size;
+          o.vx[i] = o.vy[i] = 0.0;
+          o.weight[i] = 1.0 / (q * q);
+        }
+      }
+    }
+  }
+}
+
+void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report) {
+  const TbdProblem& problem = *problem_;
+  const TbdSensor& sensor = problem.sensor;
+  const int p = options_.particles;
+  if (options_.exact_kappa && !births_.empty()) {
+    report.skipped = "exact_kappa: new potential objects (birth_mean > 0) are evaluated with kappa-tilde only";
+    return;
+  }
+  if (k == 0) {
+    for (const TbdPrior& prior : problem.initial_objects) {
+      legacy_.emplace_back();
+      sample_prior(legacy_.back(), prior, p, rng_);
+      legacy_.back().label = next_label_++;
+    }
+  } else {
+    for (ParticleObject& o : legacy_) {
+      predict(o, problem.motion, sensor, problem.filter.survival_probability, rng_);
+    }
+  }
+
+  // 1. Legacy POs: L iterations of flooding BP among themselves.
+  all_.clear();
+  for (ParticleObject& o : legacy_) all_.push_back(&o);
+  CellMessageOptions message_options;
+  message_options.iterations = options_.iterations;
+  message_options.support_radius = support_radius();
+  message_options.interaction = options_.interaction;
+  message_options.exact = options_.exact_kappa;
+  message_options.serial = options_.schedule == 0;
+  if (!messages_.run(sensor, problem.amplitude, problem.frames[k], all_, message_options)) {
+    report.skipped = "exact_kappa: a data cell is reached by more than two potential objects";
+    return;
+  }
+  report.iterations = options_.iterations;
+
+  // 2. New POs, serially: each against the legacy POs' messages and the new POs kept before it.
+  const int legacy_count = static_cast<int>(legacy_.size());
+  const double keep_log_odds = std::log(options_.pruning_threshold) - std::log1p(-options_.pruning_threshold);
+  if (!births_.empty()) {
+    messages_.outgoing_field();
+    order_.clear();
+    for (int b = 0; b < static_cast<int>(births_.size()); ++b) {
+      if (messages_.evaluate(births_[b], birth_work_[b]) >= keep_log_odds) order_.push_back(b);
+    }
+    std::sort(order_.begin(), order_.end(), [&](int a, int b) {
+      const double la = birth_work_[a].log_odds, lb = birth_work_[b].log_odds;
+      return la != lb ? la > lb : a < b;
+    });
+    bool field_changed = false;
+    for (const int b : order_) {
+      if (field_changed && messages_.evaluate(births_[b], birth_work_[b]) < keep_log_odds) continue;
+      promote(birth_work_[b], births_[b], logistic(birth_work_[b].log_odds));
+      messages_.add_to_field(births_[b], birth_work_[b]);
+      field_changed = true;
+    }
+  }
+
+  // 3. Legacy POs: belief, existence, prune, resample (after the new POs, which read their work).
+  std::vector<bool> keep(legacy_count, false);
+  for (int n = 0; n < legacy_count; ++n) {
+    ParticleObject& o = legacy_[n];
+    const double log_odds = messages_.existence_log_odds(n);
+    if (!(log_odds >= keep_log_odds)) continue;
+    const std::vector<double>& total = messages_.total_log_ratio(n);
+    double top = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < o.size(); ++i) top = std::max(top, total[i]);
+    double sum = 0.0;
+    for (int i = 0; i < o.size(); ++i) sum += o.weight[i] *= std::exp(total[i] - top);
+    for (double& w : o.weight) w /= sum;
+    o.existence = logistic(log_odds);
+    resample(o, p, rng_, scratch_);
+    keep[n] = true;
+  }
+  int kept = 0;
+  for (int n = 0; n < static_cast<int>(legacy_.size()); ++n) {
+    if (n >= legacy_count || keep[n]) std::swap(legacy_[kept++], legacy_[n]);
+  }
+  legacy_.resize(kept);
+
+  estimates.clear();
+  for (const ParticleObject& o : legacy_) {
+    if (o.existence > options_.detection_threshold) estimates.push_back({o.mean(), o.existence, o.label});
+  }
+}
+
+// A new PO becomes a legacy PO: P particles from α (uniform over the cell, velocity prior),
+// weighted by Π_j κ̃ at their positions (the messages it was evaluated with), resampled.
+void TbdBp::promote(const CellMessages::Work& work, const ParticleObject& birth, double existence) {
+  const TbdSensor& sensor = problem_->sensor;
+  const int p = options_.particles;
+  const int q = options_.birth_grid;
+  // The cell: the quadrature's first point is at (½, ½)/Q of the cell.
+  const double x0 = birth.x[0] - 0.5 * sensor.cell_size / q;
+  const double y0 = birth.y[0] - 0.5 * sensor.cell_size / q;
+  const double speed_sd = problem_->filter.birth_speed_sd;
+  ParticleObject o;
+  o.resize(p);
+  double top = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < p; ++i) {
+    o.x[i] = x0 + sensor.cell_size * rng_.uniform();
+    o.y[i] = y0 + sensor.cell_size * rng_.uniform();
+    o.vx[i] = speed_sd * rng_.normal();
+    o.vy[i] = speed_sd * rng_.normal();
+    o.weight[i] = messages_.log_ratio_at(work, o.x[i], o.y[i]);
+    top = std::max(top, o.weight[i]);
+  }
+  double sum = 0.0;
+  for (double& w : o.weight) sum += w = std::exp(w - top);
+  for (double& w : o.weight) w /= sum;
+  o.existence = existence;
+  o.label = next_label_++;
+  resample(o, p, rng_, scratch_);
+  legacy_.push_back(std::move(o));
+}
+
+DABENCH_REGISTER_TBD_TRACKER(TbdBp);
+
+}  // namespace dabench
