@@ -187,6 +187,13 @@ void TbdBp::promote(const CellMessages::Work& work, const ParticleObject& birth,
   legacy_.push_back(std::move(o));
 }
 
+void TbdBp::beliefs(std::vector<TbdBeliefSample>& samples) const {
+  samples.clear();
+  for (const ParticleObject& o : legacy_) {
+    for (int i = 0; i < o.size(); ++i) samples.push_back({o.label, o.existence, o.x[i], o.y[i], o.weight[i]});
+  }
+}
+
 DABENCH_REGISTER_TBD_TRACKER(TbdBp);
 
 }  // namespace dabench

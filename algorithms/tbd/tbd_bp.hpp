@@ -90,6 +90,8 @@ class TbdBp final : public TbdTracker {
   void start(const TbdProblem& problem) override;
   void step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report) override;
 
+  void beliefs(std::vector<TbdBeliefSample>& samples) const override;
+
   // The legacy POs after the last step (beliefs, for plots and tests).
   const std::vector<ParticleObject>& objects() const { return legacy_; }
 

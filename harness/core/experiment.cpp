@@ -203,9 +203,18 @@ Experiment load_experiment(const std::string& path) {
       } else {
         throw bad("iterations must be true or false");
       }
+    } else if (key == "beliefs") {
+      if (value == "true" || value == "1" || value == "yes") {
+        experiment.record_beliefs = true;
+      } else if (value == "false" || value == "0" || value == "no") {
+        experiment.record_beliefs = false;
+      } else {
+        throw bad("beliefs must be true or false");
+      }
     } else {
       throw InputError(fmt::format("{}: unknown key '{}' (known: name, description, scenario, trials, seed, "
-                                   "output, reference, algorithm, iterations, [scenario], [metrics], [sweep...])", path, key));
+                                   "output, reference, algorithm, iterations, beliefs, [scenario], [metrics], "
+                                   "[sweep...])", path, key));
     }
   }
   if (experiment.scenario.empty()) throw InputError(fmt::format("{}: missing 'scenario = NAME'", path));

@@ -14,6 +14,8 @@
 //   algorithm = bp:delta=1e-6
 //   iterations = true                 # tracking only: also write iterations.csv, the metrics
 //                                     #   of each recorded tracker iteration (default false)
+//   beliefs = true                    # track-before-detect only: also write beliefs.csv, the
+//                                     #   trackers' beliefs after trial 0's last step
 //
 //   [scenario]                        # fixed scenario parameters (others keep defaults)
 //   rows = 2
@@ -47,6 +49,7 @@ struct Experiment {
   std::vector<std::string> references;  // first that succeeds in a trial is the reference
   std::vector<std::string> algorithms;
   bool record_iterations = false;       // `iterations = true`: per-iteration metrics (tracking)
+  bool record_beliefs = false;          // `beliefs = true`: trial 0's final beliefs (track-before-detect)
   std::vector<KeyValue> metric_settings;  // [metrics]: checked against the kind's metric options
   std::vector<std::string> swept_keys;         // parameters that some block sweeps
   std::vector<std::vector<KeyValue>> points;   // scenario settings of each point (fixed + swept)

@@ -95,11 +95,15 @@ std::vector<ItemFile> RunPlan::item_files() const {
       }
       return files;
     }
-    case RunKind::tbd:
-      return {{"steps.csv", point + ",trial,seed,algorithm,k,n_objects,n_estimates,gospa,gospa_p2,localisation,missed,"
-                                    "false,time_us\n"},
-              {"estimates.csv", point + ",trial,algorithm,k,label,existence,x,y,vx,vy\n"},
-              {"frames.csv", point + ",trial,k,column,row,z1,z2\n"}};
+    case RunKind::tbd: {
+      std::vector<ItemFile> files = {
+          {"steps.csv", point + ",trial,seed,algorithm,k,n_objects,n_estimates,gospa,gospa_p2,localisation,missed,"
+                                "false,time_us\n"},
+          {"estimates.csv", point + ",trial,algorithm,k,label,existence,x,y,vx,vy\n"},
+          {"frames.csv", point + ",trial,k,column,row,z1,z2\n"}};
+      if (experiment.record_beliefs) files.push_back({"beliefs.csv", point + ",trial,algorithm,k,label,existence,x,y,weight\n"});
+      return files;
+    }
     case RunKind::single_scan: break;
   }
   return {};
@@ -124,6 +128,7 @@ std::string RunPlan::fingerprint() const {
   mix(std::to_string(trials));
   mix(std::to_string(seed));
   if (experiment.record_iterations) mix("iterations");  // runs without it keep their fingerprint
+  if (experiment.record_beliefs) mix("beliefs");
   for (const KeyValue& kv : experiment.metric_settings) mix("metrics." + kv.key + "=" + kv.value);
   return fmt::format("{:016x}", hash);
 }
@@ -193,6 +198,10 @@ RunPlan make_run_plan(const RunOptions& options) {
   }
   if (experiment.record_iterations && plan.kind != RunKind::tracking) {
     throw InputError(fmt::format("{}: 'iterations = true' records tracker iterations, but scenario '{}' is {} "
+                                 "(remove the line)", path, experiment.scenario, kind_name(plan.kind)));
+  }
+  if (experiment.record_beliefs && plan.kind != RunKind::tbd) {
+    throw InputError(fmt::format("{}: 'beliefs = true' records track-before-detect beliefs, but scenario '{}' is {} "
                                  "(remove the line)", path, experiment.scenario, kind_name(plan.kind)));
   }
   if (plan.kind != RunKind::single_scan && !experiment.references.empty()) {

@@ -169,6 +169,7 @@ std::string meta_json(const RunPlan& plan, const RunOptions& options, const std:
                  tbd_metrics_json(make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
   }
   if (plan.experiment.record_iterations) meta.add("record_iterations", true);
+  if (plan.experiment.record_beliefs) meta.add("record_beliefs", true);
   return meta.str();
 }
 
@@ -183,6 +184,10 @@ RunOutcome run_experiment(const RunOptions& options) {
     // A fresh run without `iterations = true` leaves no iterations.csv of an earlier run.
     std::error_code ignored;
     std::filesystem::remove(std::filesystem::path(plan.output) / "iterations.csv", ignored);
+  }
+  if (!opened.resumed && !plan.experiment.record_beliefs) {
+    std::error_code ignored;
+    std::filesystem::remove(std::filesystem::path(plan.output) / "beliefs.csv", ignored);
   }
   std::vector<std::FILE*> files;
   for (const ItemFile& file : plan.item_files()) files.push_back(open_item_file(plan, file, opened.items_done, opened.resumed));

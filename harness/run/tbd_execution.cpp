@@ -59,7 +59,7 @@ TbdWorker TbdExecution::make_worker() const {
   worker.step_seconds.resize(count);
   worker.reported.resize(count);
   worker.scorer = std::make_unique<TbdScorer>(metrics_);
-  worker.texts.resize(4);
+  worker.texts.resize(plan_.experiment.record_beliefs ? 5 : 4);
   return worker;
 }
 
@@ -110,7 +110,7 @@ void TbdExecution::run_item(TbdWorker& worker, long long item) const {
   std::string& step_rows = worker.texts[0];
   std::string& estimate_rows = worker.texts[1];
   std::string& frame_rows = worker.texts[2];
-  std::string& trial_rows = worker.texts[3];
+  std::string& trial_rows = worker.texts.back();
   const std::string& prefix = point_prefix_[point];
   for (std::size_t a = 0; a < count; ++a) {
     if (!worker.reports[a].skipped.empty()) continue;
@@ -152,6 +152,19 @@ void TbdExecution::run_item(TbdWorker& worker, long long item) const {
           append_number(frame_rows, frame(1, j));
           frame_rows += '\n';
         }
+      }
+    }
+  }
+
+  if (first_trial && plan_.experiment.record_beliefs) {
+    std::string& belief_rows = worker.texts[3];
+    for (std::size_t a = 0; a < count; ++a) {
+      if (!worker.reports[a].skipped.empty()) continue;
+      worker.trackers[a]->beliefs(worker.belief_samples);
+      for (const TbdBeliefSample& b : worker.belief_samples) {
+        fmt::format_to(std::back_inserter(belief_rows), "{},{},{},{},{}", prefix, trial, spec_field_[a], steps, b.label);
+        for (const double value : {b.existence, b.x, b.y, b.weight}) append_number(belief_rows, value);
+        belief_rows += '\n';
       }
     }
   }

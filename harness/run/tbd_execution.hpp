@@ -11,7 +11,9 @@
 //  - estimates.csv (trial 0 of each point only, for single-run figures): the truth first
 //    (algorithm `truth`, label = object number 1.., existence 1), then each tracker's reports,
 //    per step: k, label, existence, x, y, vx, vy;
-//  - frames.csv (trial 0 only): per step, per cell: k, column, row, z1, z2.
+//  - frames.csv (trial 0 only): per step, per cell: k, column, row, z1, z2;
+//  - beliefs.csv (trial 0 only, with the experiment's `beliefs = true`): each tracker's
+//    beliefs after the last step (TbdTracker::beliefs): k, label, existence, x, y, weight.
 // The tracker object is reused for every item of its thread; start() begins each run. A
 // tracker that throws gets status failed:<what()> (its later steps are not run), one that
 // sets report.skipped gets skipped:<reason>; its steps.csv rows and estimates are not written.
@@ -35,7 +37,8 @@ struct TbdWorker {
   std::vector<TbdEstimate> estimates;
   std::unique_ptr<TbdScorer> scorer;
   TbdSample sample;
-  std::vector<std::string> texts;  // rows for {steps.csv, estimates.csv, frames.csv, trials.csv}
+  std::vector<TbdBeliefSample> belief_samples;
+  std::vector<std::string> texts;  // rows for {steps.csv, estimates.csv, frames.csv, [beliefs.csv,] trials.csv}
   double busy_seconds = 0.0;
 };
 

@@ -9,6 +9,14 @@
 
 namespace dabench {
 
+// One weighted position sample of a potential object's belief (for figures).
+struct TbdBeliefSample {
+  int label = -1;
+  double existence = 0.0;
+  double x = 0.0, y = 0.0;
+  double weight = 0.0;  // normalised over the object's samples
+};
+
 class TbdTracker {
  public:
   virtual ~TbdTracker() = default;
@@ -18,6 +26,9 @@ class TbdTracker {
   // Processes frame k (k = 0, 1, ... in order: prediction, update) and replaces `estimates`
   // with the objects it reports at k. Iterative trackers add their iterations to `report`.
   virtual void step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report) = 0;
+  // The beliefs of every object the tracker holds after the last step (particle trackers: their
+  // particles; Gaussian ones may give their means). Optional: the default gives none.
+  virtual void beliefs(std::vector<TbdBeliefSample>& samples) const { samples.clear(); }
 };
 
 }  // namespace dabench

@@ -157,3 +157,34 @@ TEST_CASE("run tbd: [metrics] errors are one line, and other kinds refuse the se
   fails_with(base + "gospa_alpha = 3\n", "gospa_alpha");
   fails_with("scenario = grid\ntrials = 1\nalgorithm = bp\n[metrics]\ngospa_cutoff = 2\n", "[metrics]");
 }
+
+TEST_CASE("run tbd: beliefs = true writes trial 0's final beliefs, normalised per object", "[run][tbd]") {
+  TempDir dir;
+  dir.write("toy.ini",
+            "scenario = tbd\ntrials = 2\nseed = 3\nbeliefs = true\n"
+            "algorithm = tbd-bp:iterations=1,particles=200\n"
+            "algorithm = tbd-bp:iterations=1,particles=150,exact_kappa=true\n"
+            "[scenario]\nlayout = toy\n");
+  run_ok(dir, {"run", "toy.ini", "--out", "T"});
+  const CsvTable beliefs = parse_csv(dir.read("T/beliefs.csv"));
+  std::map<std::string, std::pair<int, double>> per_object;  // "algorithm/label" → (samples, Σ weight)
+  for (std::size_t r = 0; r < beliefs.rows.size(); ++r) {
+    CHECK(beliefs.at(r, "trial") == "0");
+    CHECK(beliefs.at(r, "k") == "1");
+    auto& [samples, sum] = per_object[beliefs.at(r, "algorithm") + "/" + beliefs.at(r, "label")];
+    ++samples;
+    sum += number(beliefs, r, "weight");
+  }
+  // The toy's two POs (existence 1, no births) survive the one step under both trackers.
+  REQUIRE(per_object.size() == 4);
+  for (const auto& [key, value] : per_object) {
+    INFO(key);
+    CHECK(value.first == (key.rfind("tbd-bp:iterations=1,particles=200/", 0) == 0 ? 200 : 150));
+    CHECK(value.second == Approx(1.0).epsilon(1e-12));
+  }
+  TempDir other;
+  other.write("bad.ini", "scenario = grid\ntrials = 1\nbeliefs = true\nalgorithm = bp\n");
+  const CliResult result = run_dabench(other, {"run", "bad.ini", "--out", "B"});
+  CHECK(result.status != 0);
+  CHECK(result.err.find("beliefs = true") != std::string::npos);
+}
