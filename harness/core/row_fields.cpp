@@ -24,4 +24,10 @@ void append_status(std::string& row, const SolveReport& report) {
   }
 }
 
+std::string one_line(std::string_view reason) {
+  std::string line;
+  for (const char c : reason) line += (c == '\n' || c == '\r') ? ' ' : c;
+  return line;
+}
+
 }  // namespace dabench

@@ -15,13 +15,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// A status reason on one CSV line: resume counts lines, so no line breaks.
-std::string one_line(std::string_view reason) {
-  std::string line;
-  for (const char c : reason) line += (c == '\n' || c == '\r') ? ' ' : c;
-  return line;
-}
-
 void append_step_metrics(std::string& row, const TbdStepMetrics& m) {
   for (const double value : {static_cast<double>(m.objects), static_cast<double>(m.estimates), m.gospa, m.gospa_p2,
                              m.localisation, m.missed, m.false_objects}) {

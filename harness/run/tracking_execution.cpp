@@ -20,13 +20,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kStateColumns = 4;  // [g, ġ, ϑ, ϑ̇]
 constexpr TrackingMetrics kMissing{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
 
-// A status reason on one CSV line: resume counts lines, so no line breaks.
-std::string one_line(std::string_view reason) {
-  std::string line;
-  for (const char c : reason) line += (c == '\n' || c == '\r') ? ' ' : c;
-  return line;
-}
-
 std::string failure(std::string_view what) { return "failed:" + one_line(what); }
 
 // The metric columns shared by trials.csv and iterations.csv, nvt .. mospa_km.
