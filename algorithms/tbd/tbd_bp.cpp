@@ -92,7 +92,7 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     }
   }
 
-  // 1. Legacy POs: L iterations of flooding BP among themselves.
+  // 1. Legacy POs: L iterations among themselves (serial or flooding schedule).
   all_.clear();
   for (ParticleObject& o : legacy_) all_.push_back(&o);
   CellMessageOptions message_options;
@@ -129,7 +129,8 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     }
   }
 
-  // 3. Legacy POs: belief, existence, prune, resample (after the new POs, which read their work).
+  // 3. Legacy POs of this step's run: belief, existence, prune, resample (the POs promote()
+  //    appended after them are kept as they are).
   std::vector<bool> keep(legacy_count, false);
   for (int n = 0; n < legacy_count; ++n) {
     ParticleObject& o = legacy_[n];
