@@ -83,11 +83,14 @@ bool CellMessages::run(const TbdSensor& sensor, double amplitude, const Eigen::M
     for (int n = 0; n < count; ++n) belief(*objects[n], work_[n]);
     return true;
   }
+  const bool totals_needed = options.interaction || options.exact;
   for (int l = 1; l <= options.iterations; ++l) {
     // β^(ℓ) moments of every PO, then the per-cell totals, then every PO's λ^(ℓ).
-    for (int n = 0; n < count; ++n) moments(*objects[n], work_[n], l == 1);
-    std::fill(totals_.begin(), totals_.end(), CellTotals{});
-    for (int n = 0; n < count; ++n) accumulate(work_[n], 1.0);
+    if (totals_needed) {
+      for (int n = 0; n < count; ++n) moments(*objects[n], work_[n], l == 1);
+      std::fill(totals_.begin(), totals_.end(), CellTotals{});
+      for (int n = 0; n < count; ++n) accumulate(work_[n], 1.0);
+    }
     if (options.exact) {
       exact_log_ratios(objects);
     } else {
@@ -106,9 +109,9 @@ void CellMessages::outgoing_field() {
   }
 }
 
-double CellMessages::evaluate(const ParticleObject& object, Work& work) {
+double CellMessages::evaluate(const ParticleObject& object, Work& work, bool interaction) {
   std::fill(work.terms.begin(), work.terms.end(), CellTerms{});  // its own terms: not in the field
-  gaussian_log_ratios(object, work, true, false);
+  gaussian_log_ratios(object, work, interaction, false);
   belief(object, work);
   return work.log_odds;
 }

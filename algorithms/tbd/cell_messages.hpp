@@ -98,9 +98,10 @@ class CellMessages {
   // PO's window and spread tables (once for POs whose particles do not move: new POs).
   void configure(const TbdSensor& sensor, double amplitude, double support_radius);
   void prepare(const ParticleObject& object, Work& work) const;
-  // One new PO, prepared, against the field (κ̃, interacting) of the last run()'s frame: fills
-  // Σ_j λ and the log-odds in `work` and returns the belief's log r̃/(1 − r̃).
-  double evaluate(const ParticleObject& object, Work& work);
+  // One new PO, prepared, against the field (κ̃) of the last run()'s frame — or, with
+  // `interaction` false, against the frame alone: fills Σ_j λ and the log-odds in `work` and
+  // returns the belief's log r̃/(1 − r̃).
+  double evaluate(const ParticleObject& object, Work& work, bool interaction);
   // Adds the belief of an evaluated PO (existence r̃ = logistic(work.log_odds)) to the field.
   void add_to_field(const ParticleObject& object, const Work& work);
   // Σ_j λ_{n,j} at a position not among the particles of an evaluated PO, under the messages

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "algorithms/tbd/new_objects.hpp"
 #include "harness/tbd/registry.hpp"
 
 namespace dabench {
@@ -43,8 +44,7 @@ double TbdBp::support_radius() const {
   return options_.support_sigmas * std::sqrt(problem_->sensor.spread_variance);
 }
 
-// One new PO per cell: a Q × Q midpoint quadrature of the cell (velocities unused by the
-// messages), r⁻ = (μ_B/J)/(1 + μ_B/J). The same for every step of a run.
+// One new PO per cell, r⁻ = (μ_B/J)/(1 + μ_B/J); the same for every step of a run.
 void TbdBp::make_new_objects() {
   const TbdSensor& s = problem_->sensor;
   const double birth = problem_->filter.birth_mean / s.cells();
@@ -52,24 +52,8 @@ void TbdBp::make_new_objects() {
     births_.clear();
     return;
   }
-  const int q = options_.birth_grid;
-  births_.resize(s.cells());
-  for (int row = 0; row < s.rows; ++row) {
-    for (int column = 0; column < s.columns; ++column) {
-      ParticleObject& o = births_[row * s.columns + column];
-      o.resize(q * q);
-      o.existence = birth / (1.0 + birth);
-      for (int a = 0; a < q; ++a) {
-        for (int b = 0; b < q; ++b) {
-          const int i = a * q + b;
-          o.x[i] = s.x_min + (column + (b + 0.5) / q) * s.cell_size;
-          o.y[i] = s.y_min + (row + (a + 0.5) / q) * s.cell_size;
-          o.vx[i] = o.vy[i] = 0.0;
-          o.weight[i] = 1.0 / (q * q);
-        }
-      }
-    }
-  }
+  make_cell_objects(s, options_.birth_grid, births_);
+  for (ParticleObject& o : births_) o.existence = birth / (1.0 + birth);
 }
 
 void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report) {
@@ -114,7 +98,7 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     messages_.outgoing_field();
     order_.clear();
     for (int b = 0; b < static_cast<int>(births_.size()); ++b) {
-      if (messages_.evaluate(births_[b], birth_work_[b]) >= keep_log_odds) order_.push_back(b);
+      if (messages_.evaluate(births_[b], birth_work_[b], options_.interaction) >= keep_log_odds) order_.push_back(b);
     }
     std::sort(order_.begin(), order_.end(), [&](int a, int b) {
       const double la = birth_work_[a].log_odds, lb = birth_work_[b].log_odds;
@@ -122,14 +106,18 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     });
     bool field_changed = false;
     for (const int b : order_) {
-      if (field_changed && messages_.evaluate(births_[b], birth_work_[b]) < keep_log_odds) continue;
-      promote(birth_work_[b], births_[b], logistic(birth_work_[b].log_odds));
+      if (field_changed && messages_.evaluate(births_[b], birth_work_[b], options_.interaction) < keep_log_odds) continue;
+      legacy_.emplace_back();
+      ParticleObject& o = legacy_.back();
+      draw_in_cell(problem, b, p, rng_, o);
+      for (int i = 0; i < p; ++i) o.weight[i] = messages_.log_ratio_at(birth_work_[b], o.x[i], o.y[i]);
+      settle_drawn(o, logistic(birth_work_[b].log_odds), next_label_++, rng_, scratch_);
       messages_.add_to_field(births_[b], birth_work_[b]);
       field_changed = true;
     }
   }
 
-  // 3. Legacy POs of this step's run: belief, existence, prune, resample (the POs promote()
+  // 3. Legacy POs of this step's run: belief, existence, prune, resample (the new POs
   //    appended after them are kept as they are).
   std::vector<bool> keep(legacy_count, false);
   for (int n = 0; n < legacy_count; ++n) {
@@ -156,36 +144,6 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
   for (const ParticleObject& o : legacy_) {
     if (o.existence > options_.detection_threshold) estimates.push_back({o.mean(), o.existence, o.label});
   }
-}
-
-// A new PO becomes a legacy PO: P particles from α (uniform over the cell, velocity prior),
-// weighted by Π_j κ̃ at their positions (the messages it was evaluated with), resampled.
-void TbdBp::promote(const CellMessages::Work& work, const ParticleObject& birth, double existence) {
-  const TbdSensor& sensor = problem_->sensor;
-  const int p = options_.particles;
-  const int q = options_.birth_grid;
-  // The cell: the quadrature's first point is at (½, ½)/Q of the cell.
-  const double x0 = birth.x[0] - 0.5 * sensor.cell_size / q;
-  const double y0 = birth.y[0] - 0.5 * sensor.cell_size / q;
-  const double speed_sd = problem_->filter.birth_speed_sd;
-  ParticleObject o;
-  o.resize(p);
-  double top = -std::numeric_limits<double>::infinity();
-  for (int i = 0; i < p; ++i) {
-    o.x[i] = x0 + sensor.cell_size * rng_.uniform();
-    o.y[i] = y0 + sensor.cell_size * rng_.uniform();
-    o.vx[i] = speed_sd * rng_.normal();
-    o.vy[i] = speed_sd * rng_.normal();
-    o.weight[i] = messages_.log_ratio_at(work, o.x[i], o.y[i]);
-    top = std::max(top, o.weight[i]);
-  }
-  double sum = 0.0;
-  for (double& w : o.weight) sum += w = std::exp(w - top);
-  for (double& w : o.weight) w /= sum;
-  o.existence = existence;
-  o.label = next_label_++;
-  resample(o, p, rng_, scratch_);
-  legacy_.push_back(std::move(o));
 }
 
 void TbdBp::beliefs(std::vector<TbdBeliefSample>& samples) const {

@@ -98,7 +98,6 @@ class TbdBp final : public TbdTracker {
  private:
   void make_new_objects();
   double support_radius() const;  // window margin, m
-  void promote(const CellMessages::Work& work, const ParticleObject& birth, double existence);
 
   Options options_;
   const TbdProblem* problem_ = nullptr;

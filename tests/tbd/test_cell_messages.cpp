@@ -610,7 +610,7 @@ TEST_CASE("tbd cell messages: new POs are evaluated against the field, which add
     CellMessages::Work work_a, work_b;
     messages.prepare(a, work_a);
     messages.prepare(b, work_b);
-    const double odds_a = messages.evaluate(a, work_a);
+    const double odds_a = messages.evaluate(a, work_a, true);
     std::vector<double> lambda_a(a.size(), 0.0);
     for (int i = 0; i < a.size(); ++i) {
       for (int j = 0; j < m.cells(); ++j) {
@@ -639,7 +639,7 @@ TEST_CASE("tbd cell messages: new POs are evaluated against the field, which add
       }
     }
     messages.add_to_field(a, work_a);
-    messages.evaluate(b, work_b);
+    messages.evaluate(b, work_b, true);
     for (int i = 0; i < b.size(); ++i) {
       double expected = 0.0;
       for (int j = 0; j < m.cells(); ++j) {

@@ -27,6 +27,7 @@
 #include "harness/tbd/problem.hpp"
 #include "harness/tbd/registry.hpp"
 #include "tests/support/input_error.hpp"
+#include "tests/support/tbd_frames.hpp"
 
 namespace {
 
@@ -40,57 +41,10 @@ using dabench::TbdProblem;
 using dabench::TbdSensor;
 using dabench::TbdSignal;
 
+using dabench::test::draw_frame;
+using dabench::test::grid_problem;
+
 constexpr std::uint64_t kSeed = 20230711;
-constexpr double kPi = std::numbers::pi;
-
-// One cell's μ_j and c_j (problem.hpp restated): g = exp(−‖c_j − p‖²/(2σ_h²)); D1: μ = 0,
-// c = σ_S² γ/2 g; D2: μ = (γ Δ²/(2πσ_h²) g, 0), c = σ_S² g².
-void cell_signal(const TbdSensor& s, double gamma, int column, int row, double px, double py, Eigen::Vector2d& mu,
-                 double& c) {
-  const double dx = s.x_min + (column + 0.5) * s.cell_size - px;
-  const double dy = s.y_min + (row + 0.5) * s.cell_size - py;
-  const double g = std::exp(-(dx * dx + dy * dy) / (2.0 * s.spread_variance));
-  if (s.signal == TbdSignal::fluctuating) {
-    mu.setZero();
-    c = s.signal_scale * 0.5 * gamma * g;
-  } else {
-    mu = Eigen::Vector2d(gamma * s.cell_size * s.cell_size / (2.0 * kPi * s.spread_variance) * g, 0.0);
-    c = s.signal_scale * g * g;
-  }
-}
-
-// z_j = ε_j + Σ_objects h_j, h_j ~ N(μ_j, c_j I₂), ε_j ~ N(0, σ² I₂).
-Eigen::Matrix2Xd draw_frame(const TbdSensor& s, double gamma, const std::vector<Eigen::Vector2d>& positions,
-                            RandomStream& rng) {
-  Eigen::Matrix2Xd z(2, s.cells());
-  const double sd = std::sqrt(s.noise_variance);
-  for (int row = 0; row < s.rows; ++row) {
-    for (int column = 0; column < s.columns; ++column) {
-      Eigen::Vector2d v(sd * rng.normal(), sd * rng.normal());
-      for (const Eigen::Vector2d& p : positions) {
-        Eigen::Vector2d mu;
-        double c = 0.0;
-        cell_signal(s, gamma, column, row, p.x(), p.y(), mu, c);
-        v += mu + std::sqrt(c) * Eigen::Vector2d(rng.normal(), rng.normal());
-      }
-      z.col(row * s.columns + column) = v;
-    }
-  }
-  return z;
-}
-
-TbdProblem grid_problem(int size, TbdSignal signal, std::uint32_t trial) {
-  TbdProblem p;
-  p.sensor.columns = p.sensor.rows = size;
-  p.sensor.cell_size = 1.0;
-  p.sensor.signal = signal;
-  p.sensor.noise_variance = 1.0;
-  p.sensor.signal_scale = 1.0;
-  p.sensor.spread_variance = 0.5;
-  p.amplitude = 60.0;
-  p.trial_key = {kSeed, 0, trial};
-  return p;
-}
 
 // One object from a cell centre of a 12 × 12 grid with a known prior (r = 1, small covariance),
 // moving by the problem's NCV model; `truth` holds its state per step.
@@ -101,7 +55,7 @@ struct OneObject {
 
 OneObject one_object(TbdSignal signal, std::uint32_t trial, int steps) {
   OneObject o;
-  o.problem = grid_problem(12, signal, trial);
+  o.problem = grid_problem(12, signal, kSeed, trial);
   TbdProblem& p = o.problem;
   RandomStream rng(kSeed, 7, trial);
   Eigen::Vector4d x(5.5, 6.5, 0.1, -0.05);  // cell (5, 6)'s centre
@@ -155,7 +109,7 @@ TEST_CASE("tbd-bp: pure noise with a tiny birth mean gives no estimates", "[tbd]
   for (const TbdSignal signal : {TbdSignal::fluctuating, TbdSignal::deterministic}) {
     for (std::uint32_t trial = 0; trial < 3; ++trial) {
       INFO(signal_name(signal) << ", trial " << trial);
-      TbdProblem p = grid_problem(12, signal, trial);
+      TbdProblem p = grid_problem(12, signal, kSeed, trial);
       p.filter.birth_mean = 1e-6;
       RandomStream rng(kSeed, 8, trial);
       for (int k = 0; k < 10; ++k) p.frames.push_back(draw_frame(p.sensor, p.amplitude, {}, rng));
@@ -246,7 +200,7 @@ namespace {
 // PO is deleted.
 void check_born_object(int iterations, std::uint32_t trial) {
   INFO("iterations " << iterations << ", trial " << trial);
-  TbdProblem p = grid_problem(12, TbdSignal::deterministic, trial);
+  TbdProblem p = grid_problem(12, TbdSignal::deterministic, kSeed, trial);
   RandomStream rng(kSeed, 12, trial);
   Eigen::Vector2d position(5.5, 6.5);
   const Eigen::Vector2d velocity(0.1, -0.05);
@@ -391,7 +345,7 @@ TEST_CASE("tbd-bp: invalid options are input errors naming the field", "[tbd][tb
 
 TEST_CASE("tbd-bp: exact kappa with births on a grid is skipped", "[tbd][tbd_bp][exact]") {
   // One new PO per cell, each window ±4σ_h ≈ ±2.8 m: every cell is reached by many POs.
-  TbdProblem p = grid_problem(12, TbdSignal::fluctuating, 0);
+  TbdProblem p = grid_problem(12, TbdSignal::fluctuating, kSeed, 0);
   RandomStream rng(kSeed, 9, 0);
   p.frames.push_back(draw_frame(p.sensor, p.amplitude, {}, rng));
   const auto tracker = dabench::make_tbd_tracker("tbd-bp:exact_kappa=true,particles=100");

@@ -1,0 +1,66 @@
+#pragma once
+// Frames for the track-before-detect tests, drawn from the superpositional model of
+// harness/tbd/problem.hpp with the tests' own code (not the scenario's), on small grids.
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "harness/core/random_stream.hpp"
+#include "harness/tbd/problem.hpp"
+
+namespace dabench::test {
+
+// One cell's μ_j and c_j (problem.hpp restated): g = exp(−‖c_j − p‖²/(2σ_h²)); D1: μ = 0,
+// c = σ_S² γ/2 g; D2: μ = (γ Δ²/(2πσ_h²) g, 0), c = σ_S² g².
+inline void cell_signal(const TbdSensor& s, double gamma, int column, int row, double px, double py,
+                        Eigen::Vector2d& mu, double& c) {
+  const double dx = s.x_min + (column + 0.5) * s.cell_size - px;
+  const double dy = s.y_min + (row + 0.5) * s.cell_size - py;
+  const double g = std::exp(-(dx * dx + dy * dy) / (2.0 * s.spread_variance));
+  if (s.signal == TbdSignal::fluctuating) {
+    mu.setZero();
+    c = s.signal_scale * 0.5 * gamma * g;
+  } else {
+    mu = Eigen::Vector2d(gamma * s.cell_size * s.cell_size / (2.0 * std::numbers::pi * s.spread_variance) * g, 0.0);
+    c = s.signal_scale * g * g;
+  }
+}
+
+// z_j = ε_j + Σ_objects h_j, h_j ~ N(μ_j, c_j I₂), ε_j ~ N(0, σ² I₂).
+inline Eigen::Matrix2Xd draw_frame(const TbdSensor& s, double gamma, const std::vector<Eigen::Vector2d>& positions,
+                                   RandomStream& rng) {
+  Eigen::Matrix2Xd z(2, s.cells());
+  const double sd = std::sqrt(s.noise_variance);
+  for (int row = 0; row < s.rows; ++row) {
+    for (int column = 0; column < s.columns; ++column) {
+      Eigen::Vector2d v(sd * rng.normal(), sd * rng.normal());
+      for (const Eigen::Vector2d& p : positions) {
+        Eigen::Vector2d mu;
+        double c = 0.0;
+        cell_signal(s, gamma, column, row, p.x(), p.y(), mu, c);
+        v += mu + std::sqrt(c) * Eigen::Vector2d(rng.normal(), rng.normal());
+      }
+      z.col(row * s.columns + column) = v;
+    }
+  }
+  return z;
+}
+
+// A size × size grid of 1 m cells, γ = 60, σ² = 1, σ_S² = 1, σ_h² = 0.5; no frames yet.
+inline TbdProblem grid_problem(int size, TbdSignal signal, std::uint64_t seed, std::uint32_t trial) {
+  TbdProblem p;
+  p.sensor.columns = p.sensor.rows = size;
+  p.sensor.cell_size = 1.0;
+  p.sensor.signal = signal;
+  p.sensor.noise_variance = 1.0;
+  p.sensor.signal_scale = 1.0;
+  p.sensor.spread_variance = 0.5;
+  p.amplitude = 60.0;
+  p.trial_key = {seed, 0, trial};
+  return p;
+}
+
+}  // namespace dabench::test
