@@ -13,8 +13,6 @@ namespace {
 constexpr double kMaxLogOdds = 700.0;  // log π is capped here (a node that must cover the cell)
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 
-// log(1 + e^a), stable for large a.
-double softplus(double a) { return a > 0.0 ? a + std::log1p(std::exp(-a)) : std::log1p(std::exp(a)); }
 
 }  // namespace
 
@@ -84,6 +82,8 @@ int CellExclusion::add(const double* x, const double* y, const double* log_weigh
   node.log_absent = present ? std::log1p(-existence) - std::log(existence) - top : 0.0;
   node.total = 0.0;
   node.absent = 1.0;
+  node.existence = -1.0;  // no belief yet: the first update always counts as a change
+  node.previous.assign(count, 0.0);
   return count_++;
 }
 
@@ -122,16 +122,24 @@ double CellExclusion::update(int index, bool new_pi) {
   node.total = total;
   node.absent = std::exp(node.log_absent - shift);
   if (!new_pi) return 0.0;
+  // The belief's change since the node's last update: |Δ r̃| + total variation of its weights.
+  const double existence = total > 0.0 ? total / (total + node.absent) : 0.0;
+  double change = std::abs(existence - node.existence);
+  double variation = 0.0;
+  for (int p = 0; p < count; ++p) {
+    const double w = total > 0.0 ? node.particle[p] / total : 0.0;
+    variation += std::abs(w - node.previous[p]);
+    node.previous[p] = w;
+  }
+  node.existence = existence;
+  change = std::max(change, 0.5 * variation);
   // π_ij = (C_ij / ν_{j→i}) / (b(0) + T − C_ij).
-  double change = 0.0;
   for (int c = 0; c < cells; ++c) {
     double log_pi = kMinusInfinity;
     if (node.covered[c] > 0.0) {
       const double uncovered = std::max(0.0, node.absent + total - node.covered[c]);
       log_pi = std::min(kMaxLogOdds, std::log(node.covered[c]) - node.log_nu[c] - std::log(uncovered));
     }
-    if (log_pi == node.log_pi[c]) continue;
-    change = std::max(change, std::abs(softplus(log_pi) - softplus(node.log_pi[c])));
     node.log_pi[c] = log_pi;
   }
   return change;

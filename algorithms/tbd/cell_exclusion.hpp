@@ -20,7 +20,9 @@
 // (no subtraction of totals); log π is capped at 700 (a node that must cover the cell).
 // Schedule: serial, nodes in the order they were added, each against the others' newest π
 // (a flooding schedule oscillates with period two when two certain objects share a cell).
-// Sweeps stop when no log(1 + π_ij) changes by more than `tolerance`, or after `max_sweeps`.
+// Sweeps stop when no belief changes by more than `tolerance` (|Δ r̃_i|, or the total variation
+// of its particle weights) in a sweep, or after `max_sweeps`. (Messages π far beyond what any
+// belief can feel, e^{−800} against e^{−745}, may still flip between underflow and not.)
 // On a tree-shaped graph (any two nodes share at most one cell, no cycles) the beliefs are
 // the exact marginals (tests/tbd/test_cell_exclusion.cpp checks this by enumeration).
 #include <vector>
@@ -60,6 +62,8 @@ class CellExclusion {
     std::vector<double> covered;      // C_ij per window cell, on the node's last shift
     std::vector<double> particle;     // scratch: exp(log b_i(x_ip, 1) − shift)
     double total = 0.0, absent = 0.0; // T_i and b_i(0) on that shift
+    double existence = -1.0;          // r̃_i at the node's last update
+    std::vector<double> previous;     // its normalised particle weights then
   };
   struct Reach {  // node `node` reaches a frame cell as its window cell `cell`
     int node, cell;
@@ -69,8 +73,8 @@ class CellExclusion {
   template <class Visit>
   void for_support(const Node& node, double px, double py, Visit&& visit) const;
   int global_cell(const Node& node, int window_cell) const;
-  // Node i's ν from the others' π, its belief, then (if new_pi) its π; returns the largest
-  // change of log(1 + π_ij).
+  // Node i's ν from the others' π, its belief, then (if new_pi) its π; returns the change of
+  // its belief since its last update (|Δ r̃| or the weights' total variation, the larger).
   double update(int node, bool new_pi);
 
   const TbdSensor* sensor_ = nullptr;
