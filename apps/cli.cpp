@@ -5,11 +5,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <set>
+#include <sstream>
 
 #include <boost/program_options.hpp>
 #include <fmt/format.h>
 
+#include "harness/core/build_info.hpp"
 #include "harness/core/errors.hpp"
 #include "harness/core/experiment.hpp"
 #include "harness/core/heap_policy.hpp"
@@ -28,11 +31,44 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: dabench list\n"
-    "       dabench solve --algorithm SPEC --weights FILE [--format csv|json] [--pd P] [--lambda-fa L]\n"
-    "       dabench run EXPERIMENT.ini [--trials N] [--threads T] [--seed S] [--out DIR] [--resume|--force]\n"
-    "SPEC is NAME or NAME:key=value,key=value (see `dabench list`).\n";
+// Each subcommand's synopsis and what it does; `dabench --help` lists the synopses and
+// `dabench COMMAND --help` adds the description and the options.
+struct CommandUsage {
+  const char* synopsis;
+  const char* description;
+};
+
+constexpr CommandUsage kListUsage{
+    "dabench list",
+    "Prints the algorithms and trackers with their parameters and defaults, the scenarios and the\n"
+    "experiment files.\n"};
+constexpr CommandUsage kSolveUsage{
+    "dabench solve --algorithm SPEC --weights FILE [--format csv|json] [--pd P] [--lambda-fa L]",
+    "Solves one single-scan problem: FILE is a headerless CSV of psi, one row per target and one\n"
+    "column per measurement; prints target,measurement,probability (measurement 0 = missed).\n"};
+constexpr CommandUsage kRunUsage{
+    "dabench run EXPERIMENT.ini [--trials N] [--threads T] [--seed S] [--out DIR] [--resume|--force]",
+    "Runs an experiment file and writes trials.csv, summary.csv and meta.json (and the kind's\n"
+    "per-trial files) into its output folder. Ctrl-C stops after the trials in flight.\n"};
+
+std::string program_usage() {
+  std::string text = "usage: ";
+  const char* indent = "";
+  for (const CommandUsage* usage : {&kListUsage, &kSolveUsage, &kRunUsage}) {
+    text += fmt::format("{}{}\n", indent, usage->synopsis);
+    indent = "       ";
+  }
+  return text + "       dabench --version\n"
+                "       dabench COMMAND --help\n"
+                "SPEC is NAME or NAME:key=value,key=value (see `dabench list`).\n";
+}
+
+// "dabench 0.1.0 (git <commit>)", the commit left out when the build did not record one.
+std::string version_line() {
+  const BuildInfo& build = build_info();
+  if (build.git_commit.empty() || build.git_commit == "unknown") return fmt::format("dabench {}\n", build.version);
+  return fmt::format("dabench {} (git {})\n", build.version, build.git_commit);
+}
 
 std::string joined_command_line(int argc, char** argv) {
   std::string text;
@@ -51,12 +87,23 @@ std::string resume_command_line(int argc, char** argv) {
   return text + " --resume";
 }
 
-// Parses the options of one subcommand; po errors become InputError with the subcommand named.
-po::variables_map parse_command(const std::string& command, const po::options_description& options,
-                                const po::positional_options_description& positional, int argc, char** argv) {
+// Parses the options of one subcommand, with --help/-h added; po errors become InputError with
+// the subcommand named. Returns nothing after printing the subcommand's usage for --help (before
+// required options are checked, so `dabench run --help` needs no experiment).
+std::optional<po::variables_map> parse_command(const std::string& command, const CommandUsage& usage,
+                                               po::options_description options,
+                                               const po::positional_options_description& positional, int argc,
+                                               char** argv) {
+  options.add_options()("help,h", "print this usage and exit");
   po::variables_map values;
   try {
     po::store(po::command_line_parser(argc, argv).options(options).positional(positional).run(), values);
+    if (values.count("help")) {
+      std::ostringstream text;
+      text << "usage: " << usage.synopsis << "\n" << usage.description << "\n" << options;
+      std::fputs(text.str().c_str(), stdout);
+      return std::nullopt;
+    }
     po::notify(values);
   } catch (const po::error& error) {
     throw InputError(fmt::format("{}: {}", command, error.what()));
@@ -69,7 +116,11 @@ fs::path experiments_folder() {
   return fs::path(DABENCH_SOURCE_DIR) / "experiments";
 }
 
-int command_list() {
+int command_list(int argc, char** argv) {
+  if (!parse_command("list", kListUsage, po::options_description("list options"), po::positional_options_description(),
+                     argc, argv)) {
+    return 0;
+  }
   std::string out;
   const auto describe = [&out](const auto& registry) {
     if (registry.entries().empty()) out += "  (none registered)\n";
@@ -124,7 +175,7 @@ int command_solve(int argc, char** argv) {
       ("format", po::value(&format)->default_value("csv"), "csv or json")
       ("pd", po::value(&pd), "detection probability, for algorithms that need it")
       ("lambda-fa", po::value(&lambda_fa), "false-alarm density, for algorithms that need it");
-  parse_command("solve", options, po::positional_options_description(), argc, argv);
+  if (!parse_command("solve", kSolveUsage, options, po::positional_options_description(), argc, argv)) return 0;
   if (format != "csv" && format != "json") throw InputError(fmt::format("solve: --format must be csv or json, not '{}'", format));
   if (!std::isnan(pd) && !(pd > 0.0 && pd < 1.0)) throw InputError(fmt::format("solve: --pd {} must be in (0, 1)", pd));
   if (!std::isnan(lambda_fa) && !(lambda_fa > 0.0)) throw InputError(fmt::format("solve: --lambda-fa {} must be > 0", lambda_fa));
@@ -186,7 +237,9 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
       ("force", po::bool_switch(&run.force), "discard the run in the output folder");
   po::positional_options_description positional;
   positional.add("experiment", 1);
-  const po::variables_map values = parse_command("run", options, positional, argc, argv);
+  const auto parsed = parse_command("run", kRunUsage, options, positional, argc, argv);
+  if (!parsed) return 0;
+  const po::variables_map& values = *parsed;
   if (run.resume && run.force) throw InputError("run: --resume and --force exclude each other");
   if (values.count("trials")) {
     if (trials < 1) throw InputError(fmt::format("run: --trials {} must be >= 1", trials));
@@ -221,16 +274,19 @@ int cli_main(int argc, char** argv) {
   retain_freed_heap_memory();
   const std::string command = argc > 1 ? argv[1] : "";
   try {
-    if (command == "list") {
-      if (argc > 2) throw InputError(fmt::format("list: unexpected argument '{}'", argv[2]));
-      return command_list();
-    }
+    if (command == "list") return command_list(argc - 1, argv + 1);
     if (command == "solve") return command_solve(argc - 1, argv + 1);
     if (command == "run") {
       return command_run(argc - 1, argv + 1, joined_command_line(argc, argv), resume_command_line(argc, argv));
     }
     if (command == "-h" || command == "--help" || command == "help") {
-      std::fputs(kUsage, stdout);
+      if (argc > 2) throw InputError(fmt::format("{}: unexpected argument '{}' (for a command's usage: dabench COMMAND --help)", command, argv[2]));
+      std::fputs(program_usage().c_str(), stdout);
+      return 0;
+    }
+    if (command == "--version") {
+      if (argc > 2) throw InputError(fmt::format("--version: unexpected argument '{}'", argv[2]));
+      std::fputs(version_line().c_str(), stdout);
       return 0;
     }
     throw InputError(command.empty() ? "missing command (list, solve or run; see dabench --help)"

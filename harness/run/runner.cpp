@@ -151,6 +151,7 @@ std::string meta_json(const RunPlan& plan, const RunOptions& options, const std:
       .add("items_done", items_done)
       .add_raw("algorithms", specs)
       .add_raw("references", references)
+      .add("version", build.version)
       .add("git_commit", build.git_commit)
       .add("compiler", build.compiler)
       .add("flags", build.flags)

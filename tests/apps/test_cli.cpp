@@ -8,15 +8,20 @@
 //  - `run` rejects every bad experiment before creating its output folder, refuses a folder
 //    that holds a run unless --resume/--force (and then leaves it untouched), and refuses to
 //    resume a different run;
-//  - `list` names the algorithms, the scenarios and the experiment files.
+//  - `list` names the algorithms, the scenarios and the experiment files;
+//  - `--version` and every command's `--help`/`-h` print on stdout and exit 0.
 #include <catch2/catch.hpp>
 
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "harness/core/build_info.hpp"
 #include "tests/support/cli_runner.hpp"
 
 using namespace dabench::test::cli;
@@ -608,4 +613,58 @@ TEST_CASE("cli help: prints the usage on stdout", "[cli]") {
   const CliResult result = run_ok(dir, {"--help"});
   CHECK(contains(result.out, "dabench solve"));
   CHECK(contains(result.out, "dabench run"));
+  CHECK(contains(result.out, "dabench --version"));
+  CHECK(contains(result.out, "dabench COMMAND --help"));
+  CHECK(result.err.empty());
+}
+
+TEST_CASE("cli help: --help and -h on every command print its usage and options, exit 0", "[cli]") {
+  // Each command's own options appear; required options and the experiment are not needed, and
+  // --help wins over the other words of a valid command line. Nothing is written.
+  TempDir dir;
+  dir.write("e.ini", kGoodExperiment);
+  const auto before = snapshot(dir.work());
+  const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
+      {{"list", "--help"}, {"usage: dabench list\n", "--help"}},
+      {{"list", "-h"}, {"usage: dabench list\n"}},
+      {{"solve", "--help"}, {"usage: dabench solve --algorithm SPEC", "--algorithm", "--weights", "--format", "--pd"}},
+      {{"solve", "-h", "--algorithm", "bp"}, {"usage: dabench solve"}},
+      {{"run", "--help"}, {"usage: dabench run EXPERIMENT.ini", "--trials", "--threads", "--resume", "--force"}},
+      {{"run", "e.ini", "--trials", "2", "-h"}, {"usage: dabench run"}},
+  };
+  for (const auto& [args, mentions] : cases) {
+    std::string shown;
+    for (const auto& arg : args) shown += " " + arg;
+    INFO("dabench" << shown);
+    const CliResult result = run_ok(dir, args);
+    CHECK(result.err.empty());
+    CHECK(result.out.rfind("usage: dabench " + args[0], 0) == 0);
+    for (const auto& part : mentions) {
+      INFO("the usage should mention: " << part);
+      CHECK(contains(result.out, part));
+    }
+  }
+  CHECK_FALSE(contains(run_ok(dir, {"solve", "--help"}).out, "--resume"));  // its own options only
+  CHECK(snapshot(dir.work()) == before);
+}
+
+TEST_CASE("cli --version: program name, project version and the build's git commit", "[cli]") {
+  TempDir dir;
+  const CliResult result = run_ok(dir, {"--version"});
+  CHECK(result.err.empty());
+  const dabench::BuildInfo& build = dabench::build_info();
+  CHECK(build.version == DABENCH_PROJECT_VERSION);  // CMake's project(VERSION) reaches the program
+  const std::string expected =
+      build.git_commit == "unknown"
+          ? fmt::format("dabench {}\n", DABENCH_PROJECT_VERSION)
+          : fmt::format("dabench {} (git {})\n", DABENCH_PROJECT_VERSION, build.git_commit);
+  CHECK(result.out == expected);
+  CHECK(snapshot(dir.work()).empty());
+}
+
+TEST_CASE("cli: extra words after list, --help or --version are one-line errors", "[cli]") {
+  TempDir dir;
+  expect_error(dir, {"list", "extra"}, {"list"});
+  expect_error(dir, {"--version", "extra"}, {"--version", "extra"});
+  expect_error(dir, {"--help", "extra"}, {"extra"});
 }
