@@ -1,5 +1,6 @@
 #include "apps/cli.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,10 +14,12 @@
 #include <fmt/format.h>
 
 #include "harness/core/build_info.hpp"
+#include "harness/core/csv.hpp"
 #include "harness/core/errors.hpp"
 #include "harness/core/experiment.hpp"
 #include "harness/core/heap_policy.hpp"
 #include "harness/core/json.hpp"
+#include "harness/core/repeat_timing.hpp"
 #include "harness/multi_scan/registry.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/single_scan/registry.hpp"
@@ -43,9 +46,13 @@ constexpr CommandUsage kListUsage{
     "Prints the algorithms and trackers with their parameters and defaults, the scenarios and the\n"
     "experiment files.\n"};
 constexpr CommandUsage kSolveUsage{
-    "dabench solve --algorithm SPEC --weights FILE [--format csv|json] [--pd P] [--lambda-fa L]",
+    "dabench solve --algorithm SPEC --weights FILE [--format csv|json] [--pd P] [--lambda-fa L] [--time]",
     "Solves one single-scan problem: FILE is a headerless CSV of psi, one row per target and one\n"
-    "column per measurement; prints target,measurement,probability (measurement 0 = missed).\n"};
+    "column per measurement; prints target,measurement,probability (measurement 0 = missed).\n"
+    "With --time, times the algorithm's calls on that problem instead (the same input repeatedly:\n"
+    "warm caches) and prints algorithm,targets,measurements,solves,samples,batch,median_us,p10_us,\n"
+    "p90_us,median_interval,stable (median_interval: half-width of the median's 95% interval over\n"
+    "the median; the percentiles are of batch means when a batch holds several solves).\n"};
 constexpr CommandUsage kRunUsage{
     "dabench run EXPERIMENT.ini [--trials N] [--threads T] [--seed S] [--out DIR] [--resume|--force]",
     "Runs an experiment file and writes trials.csv, summary.csv and meta.json (and the kind's\n"
@@ -165,20 +172,73 @@ int command_list(int argc, char** argv) {
   return 0;
 }
 
+// `solve --time`: the algorithm's calls alone on `problem`, repeated (harness/core/repeat_timing.hpp);
+// CSV or JSON on stdout, times in µs per solve.
+std::string timing_report(const std::string& spec, const std::string& format, SingleScanSolver& solver,
+                          const SingleScanProblem& problem, const RepeatTimingOptions& options) {
+  MarginalTable marginals;
+  SolveReport report;
+  const RepeatTiming timing = time_repeatedly(
+      [&](long long calls) {
+        const auto start = std::chrono::steady_clock::now();
+        for (long long call = 0; call < calls; ++call) solver.solve(problem, marginals, report);
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      },
+      options);
+  const long long targets = problem.targets(), measurements = problem.measurements();
+  if (format == "json") {
+    JsonObject json;
+    json.add("algorithm", spec)
+        .add("targets", targets)
+        .add("measurements", measurements)
+        .add("solves", timing.calls)
+        .add("samples", timing.samples)
+        .add("batch", timing.batch)
+        .add("median_us", timing.median * 1e6)
+        .add("p10_us", timing.p10 * 1e6)
+        .add("p90_us", timing.p90 * 1e6)
+        .add("median_interval", timing.median_interval)
+        .add("stable", timing.stable);
+    return json.str();
+  }
+  std::string row;
+  append_csv_field(row, spec);
+  return "algorithm,targets,measurements,solves,samples,batch,median_us,p10_us,p90_us,median_interval,stable\n" + row +
+         fmt::format(",{},{},{},{},{},{},{},{},{},{}\n", targets, measurements, timing.calls, timing.samples, timing.batch,
+                     timing.median * 1e6, timing.p10 * 1e6, timing.p90 * 1e6, timing.median_interval,
+                     timing.stable ? 1 : 0);
+}
+
 int command_solve(int argc, char** argv) {
   po::options_description options("solve options");
   std::string spec, weights, format;
   double pd = std::nan(""), lambda_fa = std::nan("");
+  bool time = false;
+  RepeatTimingOptions timing;
   options.add_options()
       ("algorithm", po::value(&spec)->required(), "algorithm SPEC")
       ("weights", po::value(&weights)->required(), "headerless CSV of psi, one row per target")
       ("format", po::value(&format)->default_value("csv"), "csv or json")
       ("pd", po::value(&pd), "detection probability, for algorithms that need it")
-      ("lambda-fa", po::value(&lambda_fa), "false-alarm density, for algorithms that need it");
-  if (!parse_command("solve", kSolveUsage, options, po::positional_options_description(), argc, argv)) return 0;
+      ("lambda-fa", po::value(&lambda_fa), "false-alarm density, for algorithms that need it")
+      ("time", po::bool_switch(&time),
+       "time the algorithm instead of printing marginals: batches of >= 1 ms until the median's 95% interval is "
+       "within 1% (or the budget is spent); prints median and 10/90 percentiles per solve in us")
+      ("time-budget", po::value(&timing.budget_seconds), "--time: seconds of measurement at most, unless fewer "
+                                                          "samples than --time-min-samples (default 2)")
+      ("time-min-samples", po::value(&timing.min_samples), "--time: timed batches at least (default 10)");
+  const auto parsed = parse_command("solve", kSolveUsage, options, po::positional_options_description(), argc, argv);
+  if (!parsed) return 0;
+  for (const char* option : {"time-budget", "time-min-samples"}) {
+    if (parsed->count(option) && !time) throw InputError(fmt::format("solve: --{} needs --time", option));
+  }
   if (format != "csv" && format != "json") throw InputError(fmt::format("solve: --format must be csv or json, not '{}'", format));
   if (!std::isnan(pd) && !(pd > 0.0 && pd < 1.0)) throw InputError(fmt::format("solve: --pd {} must be in (0, 1)", pd));
   if (!std::isnan(lambda_fa) && !(lambda_fa > 0.0)) throw InputError(fmt::format("solve: --lambda-fa {} must be > 0", lambda_fa));
+  if (!(timing.budget_seconds > 0.0 && std::isfinite(timing.budget_seconds))) {
+    throw InputError(fmt::format("solve: --time-budget {} must be > 0 seconds", timing.budget_seconds));
+  }
+  if (timing.min_samples < 1) throw InputError(fmt::format("solve: --time-min-samples {} must be >= 1", timing.min_samples));
 
   auto solver = make_single_scan_solver(spec);
   SingleScanProblem problem = read_weights_csv(weights);
@@ -190,6 +250,10 @@ int command_solve(int argc, char** argv) {
   if (!report.skipped.empty()) {
     std::fprintf(stderr, "dabench: %s: skipped:%s (the algorithm refused this problem)\n", spec.c_str(), report.skipped.c_str());
     return 3;
+  }
+  if (time) {
+    std::fputs(timing_report(spec, format, *solver, problem, timing).c_str(), stdout);
+    return 0;
   }
   std::string out;
   if (format == "csv") {

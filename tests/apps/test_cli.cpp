@@ -4,7 +4,8 @@
 //    file behind (the working folder is byte-identical before and after);
 //  - `solve` prints target,measurement,probability with n·(m+1) rows, 1-based targets,
 //    measurement 0 = missed detection, rows summing to 1, and the closed-form marginals of a
-//    hand-computable 2×2 problem (also in --format json);
+//    hand-computable 2×2 problem (also in --format json); `solve --time` prints one parseable
+//    row (or JSON object) with a positive median inside its percentiles and the repetition count;
 //  - `run` rejects every bad experiment before creating its output folder, refuses a folder
 //    that holds a run unless --resume/--force (and then leaves it untouched), and refuses to
 //    resume a different run;
@@ -400,6 +401,87 @@ TEST_CASE("cli solve: --format json reports fbp's free energy", "[cli][solve]") 
   // Algorithms without a free energy leave the field out.
   const CliResult bp = run_ok(dir, {"solve", "--algorithm", "bp", "--weights", "w.csv", "--format", "json"});
   CHECK_FALSE(contains(bp.out, "free_energy"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// solve --time
+
+TEST_CASE("cli solve --time: one CSV row with a positive median inside its percentiles", "[cli][solve]") {
+  // A tiny budget keeps the test fast; at least --time-min-samples batches are timed anyway.
+  TempDir dir;
+  dir.write("w.csv", kWeights2x2);
+  const CliResult result = run_ok(dir, {"solve", "--algorithm", "bp:delta=1e-9,check_every=1", "--weights", "w.csv",
+                                        "--time", "--time-budget", "0.05", "--time-min-samples", "12"});
+  INFO("stdout: " << result.out);
+  CHECK(result.err.empty());
+  const auto lines = split_lines(result.out);
+  REQUIRE(lines.size() == 2);
+  CHECK(lines[0] == "algorithm,targets,measurements,solves,samples,batch,median_us,p10_us,p90_us,median_interval,stable");
+  const auto fields = parse_csv_line(lines[1]);
+  REQUIRE(fields.size() == 11);
+  CHECK(fields[0] == "bp:delta=1e-9,check_every=1");  // quoted in the file, one field
+  CHECK(fields[1] == "2");
+  CHECK(fields[2] == "2");
+  const long long solves = std::stoll(fields[3]), samples = std::stoll(fields[4]), batch = std::stoll(fields[5]);
+  CHECK(samples >= 12);
+  CHECK(solves == samples * batch);
+  const double median = to_double(fields[6]), p10 = to_double(fields[7]), p90 = to_double(fields[8]);
+  CHECK(median > 0.0);
+  CHECK(median < 1e5);  // a 2×2 BP takes microseconds, not a tenth of a second
+  CHECK(p10 <= median);
+  CHECK(median <= p90);
+  CHECK(to_double(fields[9]) >= 0.0);
+  CHECK((fields[10] == "0" || fields[10] == "1"));
+  // Batches double until one lasts 1 ms: a power of two, and many microsecond solves.
+  CHECK(batch > 1);
+  CHECK((batch & (batch - 1)) == 0);
+}
+
+TEST_CASE("cli solve --time --format json parses and reports the same fields", "[cli][solve]") {
+  TempDir dir;
+  dir.write("w.csv", kWeights2x2);
+  const CliResult result = run_ok(dir, {"solve", "--algorithm", "exact", "--weights", "w.csv", "--time", "--format",
+                                        "json", "--time-budget", "0.02"});
+  INFO("stdout: " << result.out);
+  CHECK(JsonChecker(result.out).valid());
+  for (const char* key : {"\"algorithm\": \"exact\"", "\"solves\": ", "\"samples\": ", "\"batch\": ", "\"median_us\": ",
+                          "\"p10_us\": ", "\"p90_us\": ", "\"median_interval\": ", "\"stable\": "}) {
+    INFO("json should hold " << key);
+    CHECK(contains(result.out, key));
+  }
+  const auto at = result.out.find("\"median_us\": ");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::strtod(result.out.c_str() + at + 13, nullptr) > 0.0);
+  CHECK(std::strtoll(result.out.c_str() + result.out.find("\"samples\": ") + 11, nullptr, 10) >= 10);
+}
+
+TEST_CASE("cli solve --time: bad combinations are one-line errors", "[cli][solve]") {
+  TempDir dir;
+  dir.write("w.csv", kWeights2x2);
+  const std::vector<std::string> base = {"solve", "--algorithm", "bp", "--weights", "w.csv"};
+  const auto with = [&base](std::vector<std::string> more) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+  };
+  expect_error(dir, with({"--time-budget", "1"}), {"--time-budget", "--time"});
+  expect_error(dir, with({"--time-min-samples", "5"}), {"--time-min-samples", "--time"});
+  expect_error(dir, with({"--time", "--time-budget", "0"}), {"--time-budget", "0"});
+  expect_error(dir, with({"--time", "--time-budget", "-1"}), {"--time-budget"});
+  expect_error(dir, with({"--time", "--time-budget", "soon"}), {"time-budget", "soon"});
+  expect_error(dir, with({"--time", "--time-min-samples", "0"}), {"--time-min-samples", "0"});
+  expect_error(dir, with({"--time", "--format", "xml"}), {"format", "xml"});
+}
+
+TEST_CASE("cli solve --time: a refused problem exits 3 without timing", "[cli][solve]") {
+  TempDir dir;
+  std::string ones;
+  for (int i = 0; i < 6; ++i) ones += "1,1,1,1,1,1\n";
+  dir.write("dense.csv", ones);
+  const CliResult result = run_dabench(dir, {"solve", "--algorithm", "exact:max_events=10", "--weights", "dense.csv", "--time"});
+  CHECK(result.status == 3);
+  CHECK(result.out.empty());
+  CHECK(contains(result.err, "skipped:"));
 }
 
 // ---------------------------------------------------------------------------------------------
