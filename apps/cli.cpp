@@ -19,9 +19,11 @@
 #include "harness/core/experiment.hpp"
 #include "harness/core/heap_policy.hpp"
 #include "harness/core/json.hpp"
+#include "harness/core/params.hpp"
 #include "harness/core/repeat_timing.hpp"
 #include "harness/multi_scan/registry.hpp"
 #include "harness/run/runner.hpp"
+#include "harness/run/shard_merge.hpp"
 #include "harness/single_scan/registry.hpp"
 #include "harness/single_scan/weights_csv.hpp"
 #include "harness/tbd/registry.hpp"
@@ -54,14 +56,21 @@ constexpr CommandUsage kSolveUsage{
     "p90_us,median_interval,stable (median_interval: half-width of the median's 95% interval over\n"
     "the median; the percentiles are of batch means when a batch holds several solves).\n"};
 constexpr CommandUsage kRunUsage{
-    "dabench run EXPERIMENT.ini [--trials N] [--threads T] [--seed S] [--out DIR] [--resume|--force]",
+    "dabench run EXPERIMENT.ini [--trials N] [--threads T] [--seed S] [--out DIR] [--resume|--force] [--shard K/N]",
     "Runs an experiment file and writes trials.csv, summary.csv and meta.json (and the kind's\n"
-    "per-trial files) into its output folder. Ctrl-C stops after the trials in flight.\n"};
+    "per-trial files) into its output folder. Ctrl-C stops after the trials in flight.\n"
+    "With --shard K/N, runs only shard K of N (blocks of 8 trials, round robin) into its own\n"
+    "folder (default: the experiment's output + -shard-K-of-N); `dabench merge` joins them.\n"};
+constexpr CommandUsage kMergeUsage{
+    "dabench merge OUT SHARD_DIR... [--force]",
+    "Joins the folders of `dabench run --shard K/N` (K = 1..N, same experiment, seed and trials)\n"
+    "into OUT: the trials.csv, summary.csv, meta.json and per-trial files of the unsharded run.\n"
+    "Missing, duplicated, incomplete or foreign shards are errors.\n"};
 
 std::string program_usage() {
   std::string text = "usage: ";
   const char* indent = "";
-  for (const CommandUsage* usage : {&kListUsage, &kSolveUsage, &kRunUsage}) {
+  for (const CommandUsage* usage : {&kListUsage, &kSolveUsage, &kRunUsage, &kMergeUsage}) {
     text += fmt::format("{}{}\n", indent, usage->synopsis);
     indent = "       ";
   }
@@ -79,7 +88,10 @@ std::string version_line() {
 
 std::string joined_command_line(int argc, char** argv) {
   std::string text;
-  for (int k = 0; k < argc; ++k) text += (k ? " " : "") + std::string(argv[k]);
+  for (int k = 0; k < argc; ++k) {
+    if (k > 0) text += ' ';
+    text += argv[k];
+  }
   return text;
 }
 
@@ -284,13 +296,24 @@ int command_solve(int argc, char** argv) {
   return 0;
 }
 
+// "K/N" with 1 <= K <= N.
+Shard parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  std::int64_t index = 0, count = 0;
+  if (slash == std::string::npos || !parse_int64(text.substr(0, slash), index) ||
+      !parse_int64(text.substr(slash + 1), count) || count < 1 || count > 1000000 || index < 1 || index > count) {
+    throw InputError(fmt::format("run: --shard '{}' must be K/N with 1 <= K <= N <= 1000000", text));
+  }
+  return Shard{static_cast<int>(index), static_cast<int>(count)};
+}
+
 int command_run(int argc, char** argv, const std::string& command_line, const std::string& resume_line) {
   po::options_description options("run options");
   RunOptions run;
   run.command_line = command_line;
   std::int64_t trials = 0, seed = 0;
   int threads = 0;
-  std::string out;
+  std::string out, shard;
   options.add_options()
       ("experiment", po::value(&run.experiment_path)->required(), "experiment INI file")
       ("trials", po::value(&trials), "Monte Carlo trials per point (overrides the file)")
@@ -298,7 +321,8 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
       ("seed", po::value(&seed), "master seed (overrides the file)")
       ("out", po::value(&out), "output folder (overrides the file)")
       ("resume", po::bool_switch(&run.resume), "finish the run in the output folder")
-      ("force", po::bool_switch(&run.force), "discard the run in the output folder");
+      ("force", po::bool_switch(&run.force), "discard the run in the output folder")
+      ("shard", po::value(&shard), "K/N: run shard K of N into its own folder (for `dabench merge`)");
   po::positional_options_description positional;
   positional.add("experiment", 1);
   const auto parsed = parse_command("run", kRunUsage, options, positional, argc, argv);
@@ -318,6 +342,7 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
     run.seed = static_cast<std::uint64_t>(seed);
   }
   if (values.count("out")) run.output = out;
+  if (values.count("shard")) run.shard = parse_shard(shard);
 
   const RunOutcome outcome = run_experiment(run);
   if (outcome.interrupted) {
@@ -332,6 +357,26 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
   return 0;
 }
 
+int command_merge(int argc, char** argv, const std::string& command_line) {
+  po::options_description options("merge options");
+  MergeOptions merge;
+  merge.command_line = command_line;
+  options.add_options()
+      ("output", po::value(&merge.output), "folder of the merged run")
+      ("shards", po::value(&merge.shards)->multitoken(), "the shard folders")
+      ("force", po::bool_switch(&merge.force), "replace a run in the output folder");
+  po::positional_options_description positional;
+  positional.add("output", 1).add("shards", -1);
+  if (!parse_command("merge", kMergeUsage, options, positional, argc, argv)) return 0;
+  if (merge.output.empty() || merge.shards.empty()) throw InputError("merge: give the output folder, then the shard folders");
+  const MergeOutcome outcome = merge_shards(merge);
+  std::string files = "trials.csv";
+  for (const std::string& file : outcome.item_files) files += ", " + file;
+  std::fprintf(stderr, "dabench: merged %d shards, %lld trials; results in %s/ (%s, summary.csv, meta.json)\n",
+               outcome.shards, outcome.items, merge.output.c_str(), files.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int cli_main(int argc, char** argv) {
@@ -343,6 +388,7 @@ int cli_main(int argc, char** argv) {
     if (command == "run") {
       return command_run(argc - 1, argv + 1, joined_command_line(argc, argv), resume_command_line(argc, argv));
     }
+    if (command == "merge") return command_merge(argc - 1, argv + 1, joined_command_line(argc, argv));
     if (command == "-h" || command == "--help" || command == "help") {
       if (argc > 2) throw InputError(fmt::format("{}: unexpected argument '{}' (for a command's usage: dabench COMMAND --help)", command, argv[2]));
       std::fputs(program_usage().c_str(), stdout);
@@ -353,8 +399,8 @@ int cli_main(int argc, char** argv) {
       std::fputs(version_line().c_str(), stdout);
       return 0;
     }
-    throw InputError(command.empty() ? "missing command (list, solve or run; see dabench --help)"
-                                     : fmt::format("unknown command '{}' (list, solve or run; see dabench --help)", command));
+    throw InputError(command.empty() ? "missing command (list, solve, run or merge; see dabench --help)"
+                                     : fmt::format("unknown command '{}' (list, solve, run or merge; see dabench --help)", command));
   } catch (const InputError& error) {
     std::fprintf(stderr, "dabench: %s\n", error.what());
     return 2;

@@ -10,6 +10,8 @@
 //    that holds a run unless --resume/--force (and then leaves it untouched), and refuses to
 //    resume a different run;
 //  - `list` names the algorithms, the scenarios and the experiment files;
+//  - `run --shard K/N` and `merge`: merged shards equal the run; missing, duplicated, foreign,
+//    incomplete shards and bad K/N are one-line errors that leave no file;
 //  - `--version` and every command's `--help`/`-h` print on stdout and exit 0.
 #include <catch2/catch.hpp>
 
@@ -649,6 +651,97 @@ TEST_CASE("cli run: a folder holding a run is refused and left byte-identical", 
 }
 
 // ---------------------------------------------------------------------------------------------
+// run --shard and merge
+
+namespace {
+
+// Columns of trials.csv but time_us.
+CsvTable without_time(const CsvTable& table) {
+  const std::size_t time = table.column("time_us");
+  CsvTable kept = table;
+  kept.header.erase(kept.header.begin() + static_cast<std::ptrdiff_t>(time));
+  for (auto& row : kept.rows) row.erase(row.begin() + static_cast<std::ptrdiff_t>(time));
+  return kept;
+}
+
+// kGoodExperiment (6 items: one block, so shards 2 and 3 of 3 are empty) as shards s1..s3 of 3.
+void run_three_shards(const TempDir& dir) {
+  dir.write("e.ini", kGoodExperiment);
+  for (const char* k : {"1", "2", "3"}) run_ok(dir, {"run", "e.ini", "--threads", "1", "--shard", std::string(k) + "/3", "--out", std::string("s") + k});
+}
+
+}  // namespace
+
+TEST_CASE("cli merge: shards merged from the command line equal the run", "[cli][shard]") {
+  TempDir dir;
+  run_three_shards(dir);
+  run_ok(dir, {"run", "e.ini", "--threads", "1", "--out", "full"});
+  const CliResult merged = run_ok(dir, {"merge", "m", "s3", "s1", "s2"});
+  CHECK(contains(merged.err, "merged 3 shards, 6 trials"));
+  CHECK(without_time(parse_csv(dir.read("m/trials.csv"))).rows == without_time(parse_csv(dir.read("full/trials.csv"))).rows);
+  CHECK(dir.exists("m/summary.csv"));
+  CHECK(contains(dir.read("m/meta.json"), "\"processes\": 3"));
+  // Without --out a shard goes beside the experiment's output folder.
+  run_ok(dir, {"run", "e.ini", "--threads", "1", "--shard", "2/2"});
+  CHECK(dir.exists("out-shard-2-of-2/trials.csv"));
+  CHECK(contains(dir.read("out-shard-2-of-2/meta.json"), "\"shard\": \"2/2\""));
+  // --force replaces a merged run.
+  expect_error(dir, {"merge", "m", "s1", "s2", "s3"}, {"m", "--force"});
+  run_ok(dir, {"merge", "m", "s1", "s2", "s3", "--force"});
+}
+
+TEST_CASE("cli merge: missing, duplicated, foreign or incomplete shards are one-line errors", "[cli][shard]") {
+  TempDir dir;
+  run_three_shards(dir);
+  SECTION("missing") { expect_error(dir, {"merge", "m", "s1", "s3"}, {"missing", "2/3"}); }
+  SECTION("duplicated") { expect_error(dir, {"merge", "m", "s1", "s2", "s3", "s2"}, {"2/3", "twice"}); }
+  SECTION("another seed") {
+    run_ok(dir, {"run", "e.ini", "--threads", "1", "--shard", "2/3", "--seed", "6", "--out", "f2"});
+    expect_error(dir, {"merge", "m", "s1", "f2", "s3"}, {"f2", "another run"});
+  }
+  SECTION("another experiment") {
+    std::string text = kGoodExperiment;
+    text.replace(text.find("spacing = 1, 2"), 14, "spacing = 1, 3");
+    dir.write("e2.ini", text);
+    run_ok(dir, {"run", "e2.ini", "--threads", "1", "--shard", "3/3", "--out", "f3"});
+    expect_error(dir, {"merge", "m", "s1", "s2", "f3"}, {"f3", "another run"});
+  }
+  SECTION("another split") {
+    run_ok(dir, {"run", "e.ini", "--threads", "1", "--shard", "2/2", "--out", "h2"});
+    expect_error(dir, {"merge", "m", "s1", "h2", "s3"}, {"h2", "2/2"});
+  }
+  SECTION("not a shard") {
+    run_ok(dir, {"run", "e.ini", "--threads", "1", "--out", "full"});
+    expect_error(dir, {"merge", "m", "s1", "full", "s3"}, {"full", "not a shard"});
+  }
+  SECTION("incomplete") {
+    std::string meta = dir.read("s2/meta.json");
+    meta.replace(meta.find("\"status\": \"complete\""), 20, "\"status\": \"interrupted\"");
+    dir.write("s2/meta.json", meta);
+    expect_error(dir, {"merge", "m", "s1", "s2", "s3"}, {"s2", "interrupted", "--resume"});
+  }
+  SECTION("rows of another shard") {
+    dir.write("s3/trials.csv", dir.read("s1/trials.csv"));
+    expect_error(dir, {"merge", "m", "s1", "s2", "s3"}, {"s3/trials.csv", "shard 3/3"});
+  }
+  SECTION("not a folder") { expect_error(dir, {"merge", "m", "s1", "nothere", "s3"}, {"nothere", "meta.json"}); }
+  SECTION("no shards") { expect_error(dir, {"merge", "m"}, {"merge", "shard folders"}); }
+  SECTION("into a shard") { expect_error(dir, {"merge", "s1", "s1", "s2", "s3"}, {"s1", "shard 1/3"}); }
+}
+
+TEST_CASE("cli run --shard: bad values and a resume of another shard are one-line errors", "[cli][shard]") {
+  TempDir dir;
+  dir.write("e.ini", kGoodExperiment);
+  for (const char* bad : {"0/3", "4/3", "3", "a/b", "1/0", "-1/2"}) {
+    INFO("--shard " << bad);
+    expect_error(dir, {"run", "e.ini", "--shard", bad}, {"--shard", bad});
+  }
+  run_ok(dir, {"run", "e.ini", "--threads", "1", "--shard", "1/2", "--out", "s"});
+  expect_error(dir, {"run", "e.ini", "--shard", "2/2", "--out", "s", "--resume"}, {"s", "shard 1/2", "shard 2/2"});
+  expect_error(dir, {"run", "e.ini", "--out", "s", "--resume"}, {"s", "shard 1/2", "no shard"});
+}
+
+// ---------------------------------------------------------------------------------------------
 // commands
 
 TEST_CASE("cli: unknown or missing command fails without stdout", "[cli]") {
@@ -695,6 +788,7 @@ TEST_CASE("cli help: prints the usage on stdout", "[cli]") {
   const CliResult result = run_ok(dir, {"--help"});
   CHECK(contains(result.out, "dabench solve"));
   CHECK(contains(result.out, "dabench run"));
+  CHECK(contains(result.out, "dabench merge"));
   CHECK(contains(result.out, "dabench --version"));
   CHECK(contains(result.out, "dabench COMMAND --help"));
   CHECK(result.err.empty());
@@ -713,6 +807,7 @@ TEST_CASE("cli help: --help and -h on every command print its usage and options,
       {{"solve", "-h", "--algorithm", "bp"}, {"usage: dabench solve"}},
       {{"run", "--help"}, {"usage: dabench run EXPERIMENT.ini", "--trials", "--threads", "--resume", "--force"}},
       {{"run", "e.ini", "--trials", "2", "-h"}, {"usage: dabench run"}},
+      {{"merge", "--help"}, {"usage: dabench merge OUT SHARD_DIR", "--force"}},
   };
   for (const auto& [args, mentions] : cases) {
     std::string shown;
