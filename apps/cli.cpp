@@ -1,21 +1,29 @@
 #include "apps/cli.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <set>
+#include <sstream>
 
 #include <boost/program_options.hpp>
 #include <fmt/format.h>
 
+#include "harness/core/build_info.hpp"
+#include "harness/core/csv.hpp"
 #include "harness/core/errors.hpp"
 #include "harness/core/experiment.hpp"
 #include "harness/core/heap_policy.hpp"
 #include "harness/core/json.hpp"
+#include "harness/core/params.hpp"
+#include "harness/core/repeat_timing.hpp"
 #include "harness/multi_scan/registry.hpp"
 #include "harness/run/runner.hpp"
+#include "harness/run/shard_merge.hpp"
 #include "harness/single_scan/registry.hpp"
 #include "harness/single_scan/weights_csv.hpp"
 #include "harness/tbd/registry.hpp"
@@ -28,15 +36,62 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: dabench list\n"
-    "       dabench solve --algorithm SPEC --weights FILE [--format csv|json] [--pd P] [--lambda-fa L]\n"
-    "       dabench run EXPERIMENT.ini [--trials N] [--threads T] [--seed S] [--out DIR] [--resume|--force]\n"
-    "SPEC is NAME or NAME:key=value,key=value (see `dabench list`).\n";
+// Each subcommand's synopsis and what it does; `dabench --help` lists the synopses and
+// `dabench COMMAND --help` adds the description and the options.
+struct CommandUsage {
+  const char* synopsis;
+  const char* description;
+};
+
+constexpr CommandUsage kListUsage{
+    "dabench list",
+    "Prints the algorithms and trackers with their parameters and defaults, the scenarios and the\n"
+    "experiment files.\n"};
+constexpr CommandUsage kSolveUsage{
+    "dabench solve --algorithm SPEC --weights FILE [--format csv|json] [--pd P] [--lambda-fa L] [--time]",
+    "Solves one single-scan problem: FILE is a headerless CSV of psi, one row per target and one\n"
+    "column per measurement; prints target,measurement,probability (measurement 0 = missed).\n"
+    "With --time, times the algorithm's calls on that problem instead (the same input repeatedly:\n"
+    "warm caches) and prints algorithm,targets,measurements,solves,samples,batch,median_us,p10_us,\n"
+    "p90_us,median_interval,stable (median_interval: half-width of the median's 95% interval over\n"
+    "the median; the percentiles are of batch means when a batch holds several solves).\n"};
+constexpr CommandUsage kRunUsage{
+    "dabench run EXPERIMENT.ini [--trials N] [--threads T] [--seed S] [--out DIR] [--resume|--force] [--shard K/N]",
+    "Runs an experiment file and writes trials.csv, summary.csv and meta.json (and the kind's\n"
+    "per-trial files) into its output folder. Ctrl-C stops after the trials in flight.\n"
+    "With --shard K/N, runs only shard K of N (blocks of 8 trials, round robin) into its own\n"
+    "folder (default: the experiment's output + -shard-K-of-N); `dabench merge` joins them.\n"};
+constexpr CommandUsage kMergeUsage{
+    "dabench merge OUT SHARD_DIR... [--force]",
+    "Joins the folders of `dabench run --shard K/N` (K = 1..N, same experiment, seed and trials)\n"
+    "into OUT: the trials.csv, summary.csv, meta.json and per-trial files of the unsharded run.\n"
+    "Missing, duplicated, incomplete or foreign shards are errors.\n"};
+
+std::string program_usage() {
+  std::string text = "usage: ";
+  const char* indent = "";
+  for (const CommandUsage* usage : {&kListUsage, &kSolveUsage, &kRunUsage, &kMergeUsage}) {
+    text += fmt::format("{}{}\n", indent, usage->synopsis);
+    indent = "       ";
+  }
+  return text + "       dabench --version\n"
+                "       dabench COMMAND --help\n"
+                "SPEC is NAME or NAME:key=value,key=value (see `dabench list`).\n";
+}
+
+// "dabench 0.1.0 (git <commit>)", the commit left out when the build did not record one.
+std::string version_line() {
+  const BuildInfo& build = build_info();
+  if (build.git_commit.empty() || build.git_commit == "unknown") return fmt::format("dabench {}\n", build.version);
+  return fmt::format("dabench {} (git {})\n", build.version, build.git_commit);
+}
 
 std::string joined_command_line(int argc, char** argv) {
   std::string text;
-  for (int k = 0; k < argc; ++k) text += (k ? " " : "") + std::string(argv[k]);
+  for (int k = 0; k < argc; ++k) {
+    if (k > 0) text += ' ';
+    text += argv[k];
+  }
   return text;
 }
 
@@ -51,12 +106,23 @@ std::string resume_command_line(int argc, char** argv) {
   return text + " --resume";
 }
 
-// Parses the options of one subcommand; po errors become InputError with the subcommand named.
-po::variables_map parse_command(const std::string& command, const po::options_description& options,
-                                const po::positional_options_description& positional, int argc, char** argv) {
+// Parses the options of one subcommand, with --help/-h added; po errors become InputError with
+// the subcommand named. Returns nothing after printing the subcommand's usage for --help (before
+// required options are checked, so `dabench run --help` needs no experiment).
+std::optional<po::variables_map> parse_command(const std::string& command, const CommandUsage& usage,
+                                               po::options_description options,
+                                               const po::positional_options_description& positional, int argc,
+                                               char** argv) {
+  options.add_options()("help,h", "print this usage and exit");
   po::variables_map values;
   try {
     po::store(po::command_line_parser(argc, argv).options(options).positional(positional).run(), values);
+    if (values.count("help")) {
+      std::ostringstream text;
+      text << "usage: " << usage.synopsis << "\n" << usage.description << "\n" << options;
+      std::fputs(text.str().c_str(), stdout);
+      return std::nullopt;
+    }
     po::notify(values);
   } catch (const po::error& error) {
     throw InputError(fmt::format("{}: {}", command, error.what()));
@@ -69,7 +135,11 @@ fs::path experiments_folder() {
   return fs::path(DABENCH_SOURCE_DIR) / "experiments";
 }
 
-int command_list() {
+int command_list(int argc, char** argv) {
+  if (!parse_command("list", kListUsage, po::options_description("list options"), po::positional_options_description(),
+                     argc, argv)) {
+    return 0;
+  }
   std::string out;
   const auto describe = [&out](const auto& registry) {
     if (registry.entries().empty()) out += "  (none registered)\n";
@@ -114,20 +184,73 @@ int command_list() {
   return 0;
 }
 
+// `solve --time`: the algorithm's calls alone on `problem`, repeated (harness/core/repeat_timing.hpp);
+// CSV or JSON on stdout, times in µs per solve.
+std::string timing_report(const std::string& spec, const std::string& format, SingleScanSolver& solver,
+                          const SingleScanProblem& problem, const RepeatTimingOptions& options) {
+  MarginalTable marginals;
+  SolveReport report;
+  const RepeatTiming timing = time_repeatedly(
+      [&](long long calls) {
+        const auto start = std::chrono::steady_clock::now();
+        for (long long call = 0; call < calls; ++call) solver.solve(problem, marginals, report);
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      },
+      options);
+  const long long targets = problem.targets(), measurements = problem.measurements();
+  if (format == "json") {
+    JsonObject json;
+    json.add("algorithm", spec)
+        .add("targets", targets)
+        .add("measurements", measurements)
+        .add("solves", timing.calls)
+        .add("samples", timing.samples)
+        .add("batch", timing.batch)
+        .add("median_us", timing.median * 1e6)
+        .add("p10_us", timing.p10 * 1e6)
+        .add("p90_us", timing.p90 * 1e6)
+        .add("median_interval", timing.median_interval)
+        .add("stable", timing.stable);
+    return json.str();
+  }
+  std::string row;
+  append_csv_field(row, spec);
+  return "algorithm,targets,measurements,solves,samples,batch,median_us,p10_us,p90_us,median_interval,stable\n" + row +
+         fmt::format(",{},{},{},{},{},{},{},{},{},{}\n", targets, measurements, timing.calls, timing.samples, timing.batch,
+                     timing.median * 1e6, timing.p10 * 1e6, timing.p90 * 1e6, timing.median_interval,
+                     timing.stable ? 1 : 0);
+}
+
 int command_solve(int argc, char** argv) {
   po::options_description options("solve options");
   std::string spec, weights, format;
   double pd = std::nan(""), lambda_fa = std::nan("");
+  bool time = false;
+  RepeatTimingOptions timing;
   options.add_options()
       ("algorithm", po::value(&spec)->required(), "algorithm SPEC")
       ("weights", po::value(&weights)->required(), "headerless CSV of psi, one row per target")
       ("format", po::value(&format)->default_value("csv"), "csv or json")
       ("pd", po::value(&pd), "detection probability, for algorithms that need it")
-      ("lambda-fa", po::value(&lambda_fa), "false-alarm density, for algorithms that need it");
-  parse_command("solve", options, po::positional_options_description(), argc, argv);
+      ("lambda-fa", po::value(&lambda_fa), "false-alarm density, for algorithms that need it")
+      ("time", po::bool_switch(&time),
+       "time the algorithm instead of printing marginals: batches of >= 1 ms until the median's 95% interval is "
+       "within 1% (or the budget is spent); prints median and 10/90 percentiles per solve in us")
+      ("time-budget", po::value(&timing.budget_seconds), "--time: seconds of measurement at most, unless fewer "
+                                                          "samples than --time-min-samples (default 2)")
+      ("time-min-samples", po::value(&timing.min_samples), "--time: timed batches at least (default 10)");
+  const auto parsed = parse_command("solve", kSolveUsage, options, po::positional_options_description(), argc, argv);
+  if (!parsed) return 0;
+  for (const char* option : {"time-budget", "time-min-samples"}) {
+    if (parsed->count(option) && !time) throw InputError(fmt::format("solve: --{} needs --time", option));
+  }
   if (format != "csv" && format != "json") throw InputError(fmt::format("solve: --format must be csv or json, not '{}'", format));
   if (!std::isnan(pd) && !(pd > 0.0 && pd < 1.0)) throw InputError(fmt::format("solve: --pd {} must be in (0, 1)", pd));
   if (!std::isnan(lambda_fa) && !(lambda_fa > 0.0)) throw InputError(fmt::format("solve: --lambda-fa {} must be > 0", lambda_fa));
+  if (!(timing.budget_seconds > 0.0 && std::isfinite(timing.budget_seconds))) {
+    throw InputError(fmt::format("solve: --time-budget {} must be > 0 seconds", timing.budget_seconds));
+  }
+  if (timing.min_samples < 1) throw InputError(fmt::format("solve: --time-min-samples {} must be >= 1", timing.min_samples));
 
   auto solver = make_single_scan_solver(spec);
   SingleScanProblem problem = read_weights_csv(weights);
@@ -139,6 +262,10 @@ int command_solve(int argc, char** argv) {
   if (!report.skipped.empty()) {
     std::fprintf(stderr, "dabench: %s: skipped:%s (the algorithm refused this problem)\n", spec.c_str(), report.skipped.c_str());
     return 3;
+  }
+  if (time) {
+    std::fputs(timing_report(spec, format, *solver, problem, timing).c_str(), stdout);
+    return 0;
   }
   std::string out;
   if (format == "csv") {
@@ -169,13 +296,24 @@ int command_solve(int argc, char** argv) {
   return 0;
 }
 
+// "K/N" with 1 <= K <= N.
+Shard parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  std::int64_t index = 0, count = 0;
+  if (slash == std::string::npos || !parse_int64(text.substr(0, slash), index) ||
+      !parse_int64(text.substr(slash + 1), count) || count < 1 || count > 1000000 || index < 1 || index > count) {
+    throw InputError(fmt::format("run: --shard '{}' must be K/N with 1 <= K <= N <= 1000000", text));
+  }
+  return Shard{static_cast<int>(index), static_cast<int>(count)};
+}
+
 int command_run(int argc, char** argv, const std::string& command_line, const std::string& resume_line) {
   po::options_description options("run options");
   RunOptions run;
   run.command_line = command_line;
   std::int64_t trials = 0, seed = 0;
   int threads = 0;
-  std::string out;
+  std::string out, shard;
   options.add_options()
       ("experiment", po::value(&run.experiment_path)->required(), "experiment INI file")
       ("trials", po::value(&trials), "Monte Carlo trials per point (overrides the file)")
@@ -183,10 +321,13 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
       ("seed", po::value(&seed), "master seed (overrides the file)")
       ("out", po::value(&out), "output folder (overrides the file)")
       ("resume", po::bool_switch(&run.resume), "finish the run in the output folder")
-      ("force", po::bool_switch(&run.force), "discard the run in the output folder");
+      ("force", po::bool_switch(&run.force), "discard the run in the output folder")
+      ("shard", po::value(&shard), "K/N: run shard K of N into its own folder (for `dabench merge`)");
   po::positional_options_description positional;
   positional.add("experiment", 1);
-  const po::variables_map values = parse_command("run", options, positional, argc, argv);
+  const auto parsed = parse_command("run", kRunUsage, options, positional, argc, argv);
+  if (!parsed) return 0;
+  const po::variables_map& values = *parsed;
   if (run.resume && run.force) throw InputError("run: --resume and --force exclude each other");
   if (values.count("trials")) {
     if (trials < 1) throw InputError(fmt::format("run: --trials {} must be >= 1", trials));
@@ -201,6 +342,7 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
     run.seed = static_cast<std::uint64_t>(seed);
   }
   if (values.count("out")) run.output = out;
+  if (values.count("shard")) run.shard = parse_shard(shard);
 
   const RunOutcome outcome = run_experiment(run);
   if (outcome.interrupted) {
@@ -215,26 +357,50 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
   return 0;
 }
 
+int command_merge(int argc, char** argv, const std::string& command_line) {
+  po::options_description options("merge options");
+  MergeOptions merge;
+  merge.command_line = command_line;
+  options.add_options()
+      ("output", po::value(&merge.output), "folder of the merged run")
+      ("shards", po::value(&merge.shards)->multitoken(), "the shard folders")
+      ("force", po::bool_switch(&merge.force), "replace a run in the output folder");
+  po::positional_options_description positional;
+  positional.add("output", 1).add("shards", -1);
+  if (!parse_command("merge", kMergeUsage, options, positional, argc, argv)) return 0;
+  if (merge.output.empty() || merge.shards.empty()) throw InputError("merge: give the output folder, then the shard folders");
+  const MergeOutcome outcome = merge_shards(merge);
+  std::string files = "trials.csv";
+  for (const std::string& file : outcome.item_files) files += ", " + file;
+  std::fprintf(stderr, "dabench: merged %d shards, %lld trials; results in %s/ (%s, summary.csv, meta.json)\n",
+               outcome.shards, outcome.items, merge.output.c_str(), files.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int cli_main(int argc, char** argv) {
   retain_freed_heap_memory();
   const std::string command = argc > 1 ? argv[1] : "";
   try {
-    if (command == "list") {
-      if (argc > 2) throw InputError(fmt::format("list: unexpected argument '{}'", argv[2]));
-      return command_list();
-    }
+    if (command == "list") return command_list(argc - 1, argv + 1);
     if (command == "solve") return command_solve(argc - 1, argv + 1);
     if (command == "run") {
       return command_run(argc - 1, argv + 1, joined_command_line(argc, argv), resume_command_line(argc, argv));
     }
+    if (command == "merge") return command_merge(argc - 1, argv + 1, joined_command_line(argc, argv));
     if (command == "-h" || command == "--help" || command == "help") {
-      std::fputs(kUsage, stdout);
+      if (argc > 2) throw InputError(fmt::format("{}: unexpected argument '{}' (for a command's usage: dabench COMMAND --help)", command, argv[2]));
+      std::fputs(program_usage().c_str(), stdout);
       return 0;
     }
-    throw InputError(command.empty() ? "missing command (list, solve or run; see dabench --help)"
-                                     : fmt::format("unknown command '{}' (list, solve or run; see dabench --help)", command));
+    if (command == "--version") {
+      if (argc > 2) throw InputError(fmt::format("--version: unexpected argument '{}'", argv[2]));
+      std::fputs(version_line().c_str(), stdout);
+      return 0;
+    }
+    throw InputError(command.empty() ? "missing command (list, solve, run or merge; see dabench --help)"
+                                     : fmt::format("unknown command '{}' (list, solve, run or merge; see dabench --help)", command));
   } catch (const InputError& error) {
     std::fprintf(stderr, "dabench: %s\n", error.what());
     return 2;

@@ -4,19 +4,25 @@
 Usage:
   /usr/bin/python3 plots/fig6.py RUN_DIR/summary.csv [--x spacing] [--out RUN_DIR/fig6.png]
                    [--metric max_error] [--title TEXT] [--where KEY=VALUE ...] [--independent-y]
+                   [--time-stat median|mean]
 
 Reads the `summary.csv` written by `dabench run` (one row per (point, algorithm): `point`, the
 scenario parameters, `algorithm`, `trials,ok,skipped,failed`, then M_count, M_mean, M_se,
 M_median, M_p5, M_p95 for each metric M) and draws, per panel, the average of --metric (log y)
-with its time_us average (log y) underneath, one line per algorithm, in the paper's styles.
+with the time per problem (log y) underneath, one line per algorithm, in the paper's styles.
 Writes a PNG and an SVG with the same stem.
+
+- Time rows (--time-stat): by default the median time per problem with its 5-95 % band
+  (time_us_median, time_us_p5, time_us_p95): on a busy machine the mean is dominated by the
+  rare calls another job preempts. `--time-stat mean` draws the paper's average time per
+  problem with its +-2 standard error band instead. The axis label says which.
 
 - x: --x, else the scenario parameter with the most distinct values. If x is `rows` or `cols`
   the x value is the number of targets (n_targets_mean, else rows*cols).
 - Panels: one per combination of the other scenario parameters that vary in the file (a
   parameter in one-to-one correspondence with x, e.g. cols when rows = cols, follows x and does
   not split panels). Panels keep the file's order, three per figure row.
-- Shaded band: mean +- 2 standard errors (Monte Carlo noise). Points whose value is zero or
+- Shaded band of the error rows: mean +- 2 standard errors (Monte Carlo noise). Points whose value is zero or
   missing are not drawn on the log axes; an algorithm whose error is zero or missing everywhere
   (the reference itself) is left out of the error row but kept in the time row.
 
@@ -416,12 +422,15 @@ def assign_styles(algorithms):
 # ----------------------------------------------------------------------------- plotting
 
 
-def plot_series(ax, x, y, se, style, band=True):
-    """Line (+-2 SE band) of the positive finite points; returns the plotted y values."""
+def plot_series(ax, x, y, se, style, band=True, lo=None, hi=None):
+    """Line of the positive finite points with a band: lo..hi where given (percentiles), else
+    +-2 SE; returns the plotted y values."""
     ok = np.isfinite(x) & np.isfinite(y) & (y > 0)
     if not ok.any():
         return np.array([])
     x, y, se = x[ok], y[ok], se[ok]
+    if lo is not None and hi is not None:
+        lo, hi = lo[ok], hi[ok]
     marker = style["marker"]
     if marker is None and len(x) == 1:
         marker = "o"  # a lone point of a plain line would be invisible
@@ -430,13 +439,59 @@ def plot_series(ax, x, y, se, style, band=True):
     ax.plot(x, y, color=style["color"], ls=style["ls"], lw=style["lw"], marker=marker,
             ms=4.5 if marker not in ("+", "x") else 5.5, mew=1.0,
             mfc=style["color"] if filled else "none", zorder=3)
-    if band:
+    if band and lo is not None and hi is not None:
+        drawn = np.isfinite(lo) & np.isfinite(hi) & (hi > 0)
+        if drawn.any():
+            lo = np.where(drawn & (lo > 0), lo, np.nan)  # clipped to the axis bottom later
+            ax.fill_between(x, lo, np.where(drawn, hi, np.nan), color=style["color"], alpha=0.12, lw=0,
+                            zorder=2)
+    elif band:
         sev = np.where(np.isfinite(se) & (se > 0), se, 0.0)
         if (sev > 0).any():
             lo = y - 2 * sev
             lo = np.where(lo > 0, lo, np.nan)  # clipped to the axis bottom later
             ax.fill_between(x, lo, y + 2 * sev, color=style["color"], alpha=0.12, lw=0, zorder=2)
     return y
+
+
+# --time-stat: the time rows' statistic, its band's columns (None: +-2 SE) and axis words.
+TIME_STATS = {
+    "median": dict(column="median", band=("p5", "p95"), word="median", band_text="5–95\u00a0% band"),
+    "mean": dict(column="mean", band=None, word="avg.", band_text="±2 SE"),
+}
+
+
+def add_time_stat_argument(ap):
+    ap.add_argument("--time-stat", choices=tuple(TIME_STATS), default="median",
+                    help="time rows: the median per problem with its 5-95 %% band (default; robust to "
+                         "preemption spikes on a busy machine), or the mean with +-2 standard errors "
+                         "as in the paper")
+
+
+def time_series(series, stat, base="time_us"):
+    """(x, y, se, lo, hi) of the time statistic `stat` of metric `base`, from a series(col, se_col)
+    function returning (x, y, se); lo, hi are None for the mean (its band is +-2 SE)."""
+    info = TIME_STATS[stat]
+    xs, ys, ses = series(f"{base}_{info['column']}", f"{base}_se" if info["band"] is None else None)
+    if info["band"] is None:
+        return xs, ys, ses, None, None
+    _, lo, _ = series(f"{base}_{info['band'][0]}", None)
+    _, hi, _ = series(f"{base}_{info['band'][1]}", None)
+    return xs, ys, ses, lo, hi
+
+
+def band_values(y, lo, hi):
+    """The percentile band's edges where y is drawn, for the axis limits (none for +-2 SE)."""
+    if lo is None or hi is None:
+        return []
+    drawn = np.isfinite(y) & (y > 0)
+    return [lo[drawn], hi[drawn]]
+
+
+def time_axis_label(stat, unit="µs", what="time"):
+    """Two lines: the statistic and unit, then the band, e.g. 'median time (µs)' / '5–95 % band'."""
+    info = TIME_STATS[stat]
+    return f"{info['word']} {what} ({unit})\n{info['band_text']}"
 
 
 def log_limits(values, pad=1.6):
@@ -519,6 +574,7 @@ def main(argv=None):
                     help="own y range per panel instead of one range per row kind")
     ap.add_argument("--max-panels", type=int, default=24, metavar="N",
                     help="refuse to draw more than N panels (default 24)")
+    add_time_stat_argument(ap)
     args = ap.parse_args(argv)
 
     summary = Summary(args.summary)
@@ -532,8 +588,9 @@ def main(argv=None):
         note(f"no column '{mcol}' in {args.summary}; the error rows will be empty")
     elif not any(fnum(r.get(mcol)) > 0 for r in rows):
         note(f"no positive value in '{mcol}'; the error rows will be empty")
-    if not summary.has("time_us_mean"):
-        note(f"no column 'time_us_mean' in {args.summary}; the time rows will be empty")
+    time_col = f"time_us_{TIME_STATS[args.time_stat]['column']}"
+    if not summary.has(time_col):
+        note(f"no column '{time_col}' in {args.summary}; the time rows will be empty")
 
     if len(sweep.panels) > args.max_panels:
         fail(f"{len(sweep.panels)} panels (one per combination of "
@@ -569,11 +626,12 @@ def main(argv=None):
             if y.size:
                 drew_err.add(spec)
                 ev.append(y)
-            xs, ys, ses = sweep.series(i, spec, "time_us_mean", "time_us_se")
-            y = plot_series(ax_t, xs, ys, ses, styles[spec])
+            xs, ys, ses, lo, hi = time_series(lambda col, se_col: sweep.series(i, spec, col, se_col),
+                                              args.time_stat)
+            y = plot_series(ax_t, xs, ys, ses, styles[spec], lo=lo, hi=hi)
             if y.size:
                 drew_time.add(spec)
-                tv.append(y)
+                tv += [y] + band_values(ys, lo, hi)
         err_vals.append(ev)
         time_vals.append(tv)
 
@@ -600,7 +658,7 @@ def main(argv=None):
         pr, c = divmod(i, ncols)
         if c == 0 or args.independent_y:
             ax_e.set_ylabel(metric_label(args.metric), fontsize=9)
-            ax_t.set_ylabel("time (µs)", fontsize=9)
+            ax_t.set_ylabel(time_axis_label(args.time_stat), fontsize=9)
         if c != 0 and not args.independent_y:
             if lim_e is not None:
                 ax_e.tick_params(labelleft=False)

@@ -5,11 +5,10 @@ Usage:
   /usr/bin/python3 plots/fig6_paper.py [--exp1 RUN1/summary.csv] [--exp2 RUN2/summary.csv]
                    [--exp3 RUN3/summary.csv] [--out results/bp-paper/fig6.png]
                    [--metric max_error] [--show-reference-error] [--independent-y]
-                   [--time-unit auto|us|ms|s] [--no-bands] [--title TEXT]
+                   [--time-unit auto|us|ms|s] [--time-stat median|mean] [--no-bands] [--title TEXT]
 
 Layout as in the paper: three panels per figure row, each panel an error axes (average
---metric, log y) above a time axes (average time per problem, log y), so 3 panel rows make 6
-axes rows:
+--metric, log y) above a time axes (time per problem, log y), so 3 panel rows make 6 axes rows:
 
     row 1:  baseline           lambda_fa 0.0316     lambda_fa 0.1
     row 2:  Pd 0.3             Pd 0.9               n x 3 grids  (experiment 2, shaded)
@@ -26,6 +25,10 @@ MCMCDA 1e5/1e6/1e7 samples, correlation decay depth 3/5/7 and junction tree thre
 exact/ehm references appear in the time rows only unless --show-reference-error. Summary rows
 whose trials were all skipped or failed (ok == 0) are not drawn, and neither is any point whose
 mean is zero or missing (log axes). One legend for the whole figure. Writes PNG and SVG.
+
+The time axes show the median time per problem with its 5-95 % band by default: on a busy
+machine the mean is dominated by the rare calls another job preempts. `--time-stat mean` draws
+the paper's average time per problem with +-2 standard errors. Axis labels and title say which.
 
 bp_paper_report.py imports the data model (PaperData) from this file.
 """
@@ -431,10 +434,8 @@ def main(argv=None):
     ap.add_argument("--error-floor", type=float, default=1e-5, metavar="Y",
                     help="lowest y of the error axes (default 1e-5; 0 = fit the data); smaller "
                          "errors run off the bottom")
-    ap.add_argument("--time-stat", choices=("mean", "median"), default="mean",
-                    help="time rows: mean per problem as in the paper (default), or the median, which "
-                         "ignores the rare calls a busy machine preempts (no bands)")
-    ap.add_argument("--no-bands", action="store_true", help="no ±2 standard error bands")
+    fig6.add_time_stat_argument(ap)
+    ap.add_argument("--no-bands", action="store_true", help="no bands (±2 standard errors, time percentiles)")
     ap.add_argument("--title", help="figure title")
     args = ap.parse_args(argv)
 
@@ -447,13 +448,12 @@ def main(argv=None):
     for exp, s in data.summaries.items():
         if not s.has(mcol):
             note(f"{s.path}: no column '{mcol}'; its error axes will be empty")
-        if not s.has("time_us_mean"):
-            note(f"{s.path}: no column 'time_us_mean'; its time axes will be empty")
+        if not s.has(f"time_us_{args.time_stat}"):
+            note(f"{s.path}: no column 'time_us_{args.time_stat}'; its time axes will be empty")
 
     algorithms = data.algorithms()
     styles, legend_order = paper_styles(algorithms)
     unit = choose_time_unit(data, args.time_unit, f"time_us_{args.time_stat}")
-    time_word = "avg." if args.time_stat == "mean" else "median"
     scale, unit_label = TIME_UNITS[unit]
 
     # grid of the panels actually present: drop empty panel rows / columns
@@ -486,12 +486,13 @@ def main(argv=None):
                 if y.size:
                     drew_err.add(spec)
                     ev.append(y)
-            xs, ys, ses = p.series(spec, f"time_us_{args.time_stat}",
-                                   "time_us_se" if args.time_stat == "mean" else None)
-            y = fig6.plot_series(ax_t, xs, ys / scale, ses / scale, st, band=band)
+            xs, ys, ses, lo, hi = fig6.time_series(lambda col, se_col: p.series(spec, col, se_col), args.time_stat)
+            if lo is not None:
+                lo, hi = lo / scale, hi / scale
+            y = fig6.plot_series(ax_t, xs, ys / scale, ses / scale, st, band=band, lo=lo, hi=hi)
             if y.size:
                 drew_time.add(spec)
-                tv.append(y)
+                tv += [y] + (fig6.band_values(ys, lo, hi) if band else [])
         axes.append((p, ax_e, ax_t, ev, tv))
 
     all_e = [v for a in axes for v in a[3]]
@@ -525,7 +526,7 @@ def main(argv=None):
                 ax.set_facecolor("0.92")
         if p.pos[1] == leftmost[p.pos[0]] or args.independent_y:
             ax_e.set_ylabel(fig6.metric_label(args.metric), fontsize=9.5)
-            ax_t.set_ylabel(f"{time_word} time per problem ({unit_label})", fontsize=9.5)
+            ax_t.set_ylabel(fig6.time_axis_label(args.time_stat, unit_label), fontsize=9.5)
         ax_t.set_xlabel(p.x_label, fontsize=9.5, labelpad=1.5)
         ax_e.set_title(p.title, fontsize=11, pad=4)
 
@@ -535,7 +536,8 @@ def main(argv=None):
         title = ("Fig. 6 (Williams & Lau 2014): average max marginal error and "
                  if args.metric == "max_error" else
                  f"Fig. 6 (Williams & Lau 2014): {fig6.metric_label(args.metric)} and ") + \
-                f"{'average' if args.time_stat == 'mean' else 'median'} time per problem"
+                ("average time per problem (±2 SE)" if args.time_stat == "mean" else
+                 "median time per problem (5–95\u00a0% band)")
         sub = []
         if any(p.exp == 1 for p in data.panels):
             sub.append("white: six targets (2×3 grid) vs spacing, baseline $P_d$ = 0.6, "

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include <boost/program_options.hpp>
 #include <fmt/format.h>
@@ -126,9 +127,13 @@ Experiment load_experiment(const std::string& path) {
   if (!file) throw InputError(fmt::format("{}: cannot read experiment file", path));
   std::stringstream buffer;
   buffer << file.rdbuf();
+  return parse_experiment(path, buffer.str());
+}
+
+Experiment parse_experiment(const std::string& path, std::string text) {
   Experiment experiment;
   experiment.path = path;
-  experiment.text = buffer.str();
+  experiment.text = std::move(text);
   experiment.name = std::filesystem::path(path).stem().string();
 
   check_ini_lines(path, experiment.text);

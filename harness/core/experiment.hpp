@@ -58,6 +58,8 @@ struct Experiment {
 // Reads and checks the file's syntax and its top-level keys. Scenario and algorithm names and
 // parameters are checked later, against the registries. Throws InputError naming the file.
 Experiment load_experiment(const std::string& path);
+// The same from the file's text (e.g. as recorded in a run's meta.json); `path` names it.
+Experiment parse_experiment(const std::string& path, std::string text);
 
 // "0:0.5:2" → {"0", "0.5", "1", "1.5", "2"}; "1, 2,3" → {"1", "2", "3"}; throws InputError.
 std::vector<std::string> expand_sweep_values(const std::string& text);

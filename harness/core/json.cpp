@@ -1,6 +1,7 @@
 #include "harness/core/json.hpp"
 
 #include <cmath>
+#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -55,6 +56,48 @@ JsonObject& JsonObject::add_raw(std::string_view name, std::string_view json) {
   key(name);
   body_ += json;
   return *this;
+}
+
+std::optional<std::string> json_value(std::string_view json, std::string_view key) {
+  const std::string label = JsonObject::quote(key) + ": ";
+  const auto at = json.find(label);
+  if (at == std::string_view::npos) return std::nullopt;
+  std::size_t k = at + label.size();
+  if (k >= json.size()) return std::nullopt;
+  if (json[k] != '"') {
+    const auto end = json.find_first_of(",\n}", k);
+    if (end == std::string_view::npos) return std::nullopt;
+    return std::string(json.substr(k, end - k));
+  }
+  std::string text;
+  for (++k; k < json.size(); ++k) {
+    const char c = json[k];
+    if (c == '"') return text;
+    if (c != '\\') {
+      text += c;
+      continue;
+    }
+    if (++k >= json.size()) return std::nullopt;
+    switch (json[k]) {
+      case 'n': text += '\n'; break;
+      case 'r': text += '\r'; break;
+      case 't': text += '\t'; break;
+      case 'b': text += '\b'; break;
+      case 'f': text += '\f'; break;
+      case 'u': {  // JsonObject escapes only control characters this way
+        if (k + 4 >= json.size()) return std::nullopt;
+        const std::string hex(json.substr(k + 1, 4));
+        char* end = nullptr;
+        const long code = std::strtol(hex.c_str(), &end, 16);
+        if (end != hex.c_str() + 4 || code > 0x7f) return std::nullopt;
+        text += static_cast<char>(code);
+        k += 4;
+        break;
+      }
+      default: text += json[k];  // \" \\ \/
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace dabench

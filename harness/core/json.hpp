@@ -1,5 +1,7 @@
 #pragma once
-// A small JSON object writer for meta.json: flat keys, strings/numbers/bools, in insertion order.
+// A small JSON object writer for meta.json: flat keys, strings/numbers/bools, in insertion order;
+// and json_value, which reads a field back from what JsonObject wrote.
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -21,5 +23,9 @@ class JsonObject {
   void key(std::string_view name);
   std::string body_;
 };
+
+// The value of the first `"key": ` in `json` as JsonObject writes it: a string unescaped, else
+// the number, true, false or null as written; nothing if the key is absent or the value cut.
+std::optional<std::string> json_value(std::string_view json, std::string_view key);
 
 }  // namespace dabench

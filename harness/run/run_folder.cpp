@@ -9,6 +9,7 @@
 #include "harness/core/atomic_file.hpp"
 #include "harness/core/csv.hpp"
 #include "harness/core/errors.hpp"
+#include "harness/core/json.hpp"
 
 namespace dabench {
 
@@ -27,14 +28,9 @@ std::string read_all(const std::string& path) {
   return buffer.str();
 }
 
-// The run fingerprint stored in meta.json, or "" if absent.
-std::string stored_fingerprint(const std::string& meta) {
-  const std::string key = "\"fingerprint\": \"";
-  const auto at = meta.find(key);
-  if (at == std::string::npos) return {};
-  const auto end = meta.find('"', at + key.size());
-  return end == std::string::npos ? std::string() : meta.substr(at + key.size(), end - at - key.size());
-}
+// What meta.json says the folder holds: the run's fingerprint and its shard ("" if absent).
+std::string stored_fingerprint(const std::string& meta) { return json_value(meta, "fingerprint").value_or(""); }
+std::string stored_shard(const std::string& meta) { return json_value(meta, "shard").value_or(""); }
 
 std::FILE* open_or_throw(const std::string& path, const char* mode) {
   std::FILE* file = std::fopen(path.c_str(), mode);
@@ -59,9 +55,15 @@ OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force, cons
   const std::string header = plan.trials_header();
   OpenedTrials opened;
   if (resume && holds_run) {
-    if (stored_fingerprint(read_all(meta)) != plan.fingerprint()) {
+    const std::string stored = read_all(meta);
+    if (stored_fingerprint(stored) != plan.fingerprint()) {
       throw InputError(fmt::format("{}: cannot resume: the run there used a different experiment, seed, trials or "
                                    "algorithms (use --force to start over)", plan.output));
+    }
+    if (stored_shard(stored) != plan.shard_label()) {
+      const auto shard = [](const std::string& label) { return label.empty() ? std::string("no shard") : "shard " + label; };
+      throw InputError(fmt::format("{}: cannot resume: the run there is {}, not {} (use --force to start over)",
+                                   plan.output, shard(stored_shard(stored)), shard(plan.shard_label())));
     }
     const std::string text = read_all(trials);
     if (text.size() >= header.size() && text.compare(0, header.size(), header) == 0) {
@@ -73,7 +75,7 @@ OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force, cons
         if (text[at] != '\n') continue;
         if (++complete_lines % rows_per_item == 0) end_of_items = at + 1;
       }
-      opened.items_done = std::min(complete_lines / rows_per_item, plan.items());
+      opened.items_done = std::min(complete_lines / rows_per_item, plan.shard_items());
       fs::resize_file(trials, end_of_items, error);
       if (error) throw InputError(fmt::format("{}: cannot trim partial rows ({})", trials, error.message()));
       opened.file = open_or_throw(trials, "ab");
@@ -108,7 +110,9 @@ std::FILE* open_item_file(const RunPlan& plan, const ItemFile& item_file, long l
     if (text.compare(0, header.size(), header) != 0) {
       throw InputError(fmt::format("{}: missing or its header differs from this experiment's; use --force to start over", path));
     }
-    // Rows are in item order; keep the complete lines of items below items_done.
+    // Rows are in item order; keep the complete lines of the first items_done items (of a
+    // shard: those before its item items_done, in the plan's numbering).
+    const long long first_not_done = items_done < plan.shard_items() ? plan.global_item(items_done) : plan.items();
     const std::size_t trial_column = plan.point_params.front().size() + 1;
     std::vector<std::string> fields;
     std::size_t keep = header.size();
@@ -120,7 +124,7 @@ std::FILE* open_item_file(const RunPlan& plan, const ItemFile& item_file, long l
           !parse_int64(fields[0], point) || !parse_int64(fields[trial_column], trial)) {
         throw InputError(fmt::format("{}: malformed row at byte {}; use --force to start over", path, at));
       }
-      if (point * plan.trials + trial >= items_done) break;
+      if (point * plan.trials + trial >= first_not_done) break;
       keep = end + 1;
       at = end + 1;
     }

@@ -2,6 +2,9 @@
 
 #include <omp.h>
 
+#include <algorithm>
+#include <utility>
+
 #include <fmt/format.h>
 
 #include "harness/core/csv.hpp"
@@ -133,6 +136,24 @@ std::string RunPlan::fingerprint() const {
   return fmt::format("{:016x}", hash);
 }
 
+long long RunPlan::shard_items() const {
+  if (!shard) return items();
+  const long long blocks = (items() + kItemsPerBlock - 1) / kItemsPerBlock;
+  const long long first = shard->index - 1;
+  if (first >= blocks) return 0;
+  const long long own_blocks = (blocks - 1 - first) / shard->count + 1;
+  const long long last = first + (own_blocks - 1) * shard->count;  // its last block, maybe short
+  return (own_blocks - 1) * kItemsPerBlock + std::min(kItemsPerBlock, items() - last * kItemsPerBlock);
+}
+
+long long RunPlan::global_item(long long local) const {
+  if (!shard) return local;
+  const long long block = (local / kItemsPerBlock) * shard->count + (shard->index - 1);
+  return block * kItemsPerBlock + local % kItemsPerBlock;
+}
+
+std::string RunPlan::shard_label() const { return shard ? fmt::format("{}/{}", shard->index, shard->count) : std::string(); }
+
 std::vector<std::string> RunPlan::point_row_prefixes() const {
   std::vector<std::string> prefixes;
   for (std::size_t p = 0; p < point_params.size(); ++p) {
@@ -156,9 +177,11 @@ std::vector<std::string> RunPlan::spec_fields() const {
   return fields;
 }
 
-RunPlan make_run_plan(const RunOptions& options) {
+RunPlan make_run_plan(const RunOptions& options) { return make_run_plan(load_experiment(options.experiment_path), options); }
+
+RunPlan make_run_plan(Experiment loaded, const RunOptions& options) {
   RunPlan plan;
-  plan.experiment = load_experiment(options.experiment_path);
+  plan.experiment = std::move(loaded);
   const Experiment& experiment = plan.experiment;
   const std::string& path = experiment.path;
   plan.trials = options.trials.value_or(experiment.trials);
@@ -167,7 +190,13 @@ RunPlan make_run_plan(const RunOptions& options) {
   plan.seed = options.seed.value_or(experiment.seed);
   plan.threads = options.threads.value_or(omp_get_max_threads());
   if (plan.threads < 1 || plan.threads > 1024) throw InputError(fmt::format("--threads must be in 1..1024 (got {})", plan.threads));
-  plan.output = options.output.value_or(experiment.output);
+  plan.shard = options.shard;
+  if (plan.shard && !(plan.shard->count >= 1 && plan.shard->index >= 1 && plan.shard->index <= plan.shard->count)) {
+    throw InputError(fmt::format("--shard {}: K/N needs 1 <= K <= N", plan.shard_label()));
+  }
+  plan.output = options.output.value_or(
+      plan.shard ? fmt::format("{}-shard-{}-of-{}", experiment.output, plan.shard->index, plan.shard->count)
+                 : experiment.output);
 
   const auto* single_scan = scenario_registry().find(experiment.scenario);
   const auto* multi_scan = multi_scan_scenario_registry().find(experiment.scenario);

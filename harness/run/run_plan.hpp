@@ -10,6 +10,7 @@
 // estimates.csv and frames.csv (harness/run/tbd_execution.hpp). The experiment's [metrics]
 // lines set the kind's metric options (track-before-detect only; an error for other kinds).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,12 @@ struct ItemFile {
   std::string header;  // with its newline
 };
 
+// Items are handed to threads in blocks: large enough that scheduling and the ordered write
+// cost little, small enough that an interrupted run loses little. Shards are made of the same
+// blocks: shard K of N runs blocks K − 1, K − 1 + N, K − 1 + 2N, ... (round robin, so every
+// shard gets a share of each sweep point's cost).
+constexpr long long kItemsPerBlock = 8;
+
 struct RunPlan {
   Experiment experiment;
   std::vector<std::vector<KeyValue>> point_settings;  // as written (fixed + swept)
@@ -38,8 +45,14 @@ struct RunPlan {
   std::uint64_t seed = 0;
   int threads = 1;
   std::string output;
+  std::optional<Shard> shard;  // run only this shard's items
 
   long long items() const { return static_cast<long long>(point_params.size()) * trials; }
+  // The items this process runs, in item order: all of them, or its shard's. Its item `local`
+  // (0-based, < shard_items()) is the plan's item global_item(local).
+  long long shard_items() const;
+  long long global_item(long long local) const;
+  std::string shard_label() const;  // "K/N", or "" when not sharded
   const std::vector<std::string>& metric_columns() const;  // of trials.csv, by kind
   std::string trials_header() const;
   // The per-item files of this kind, in the order the writer fills them (before trials.csv):
@@ -54,5 +67,7 @@ struct RunPlan {
 };
 
 RunPlan make_run_plan(const RunOptions& options);  // throws InputError
+// The same for an experiment already read (options.experiment_path is not used).
+RunPlan make_run_plan(Experiment experiment, const RunOptions& options);
 
 }  // namespace dabench

@@ -1,23 +1,19 @@
 #include "harness/run/runner.hpp"
 
 #include <omp.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <memory>
 
 #include <fmt/format.h>
 
 #include "harness/core/atomic_file.hpp"
-#include "harness/core/build_info.hpp"
 #include "harness/core/csv.hpp"
 #include "harness/core/errors.hpp"
-#include "harness/core/json.hpp"
 #include "harness/core/ordered_writer.hpp"
 #include "harness/core/progress.hpp"
 #include "harness/core/row_fields.hpp"
@@ -25,6 +21,7 @@
 #include "harness/multi_scan/registry.hpp"
 #include "harness/run/multi_scan_execution.hpp"
 #include "harness/run/run_folder.hpp"
+#include "harness/run/run_meta.hpp"
 #include "harness/run/run_plan.hpp"
 #include "harness/run/single_scan_execution.hpp"
 #include "harness/run/tbd_execution.hpp"
@@ -77,30 +74,14 @@ using Clock = std::chrono::steady_clock;
 volatile std::sig_atomic_t g_interrupted = 0;
 extern "C" void on_interrupt(int) { g_interrupted = 1; }
 
-// Items are handed to threads in blocks: large enough that scheduling and the ordered write
-// cost little, small enough that an interrupted run loses little.
-constexpr long long kItemsPerBlock = 8;
-
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  std::tm parts{};
-  gmtime_r(&now, &parts);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &parts);
-  return text;
-}
-
-std::string host_name() {
-  char name[256] = {};
-  return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string("unknown");
-}
-
-// Runs blocks first_block..total_blocks−1 on OpenMP threads (each thread with its own worker)
-// and hands each block's texts to the ordered writer; returns the threads' busy seconds.
+// Runs blocks first_block..total_blocks−1 of this process's items (RunPlan::shard_items, in
+// blocks of kItemsPerBlock) on OpenMP threads (each thread with its own worker) and hands each
+// block's texts to the ordered writer; returns the threads' busy seconds.
 template <class Execution>
-double run_blocks(const Execution& execution, OrderedWriter& writer, ProgressLine& progress, int threads,
-                  long long first_block, long long skip_in_first, long long total_items,
-                  std::atomic<long long>& items_finished) {
+double run_blocks(const Execution& execution, const RunPlan& plan, OrderedWriter& writer, ProgressLine& progress,
+                  long long first_block, long long skip_in_first, std::atomic<long long>& items_finished) {
+  const long long total_items = plan.shard_items();
+  const int threads = plan.threads;
   const long long total_blocks = (total_items + kItemsPerBlock - 1) / kItemsPerBlock;
   double busy_seconds = 0.0;
 #pragma omp parallel num_threads(threads) reduction(+ : busy_seconds)
@@ -113,7 +94,7 @@ double run_blocks(const Execution& execution, OrderedWriter& writer, ProgressLin
       const long long begin = block * kItemsPerBlock + (block == first_block ? skip_in_first : 0);
       const long long end = std::min(total_items, (block + 1) * kItemsPerBlock);
       for (std::string& text : worker.texts) text.clear();
-      for (long long item = begin; item < end; ++item) execution.run_item(worker, item);
+      for (long long item = begin; item < end; ++item) execution.run_item(worker, plan.global_item(item));
       const long long blocks_written = writer.submit(block, std::move(worker.texts));
       worker.texts = std::vector<std::string>(files);
       items_finished += end - begin;
@@ -124,62 +105,16 @@ double run_blocks(const Execution& execution, OrderedWriter& writer, ProgressLin
   return busy_seconds;
 }
 
-std::string meta_json(const RunPlan& plan, const RunOptions& options, const std::string& started,
-                      const std::string& status, long long items_done, double wall_seconds, double work_fraction,
-                      bool resumed) {
-  const BuildInfo& build = build_info();
-  const auto json_list = [](auto begin, auto end) {
-    std::string list = "[";
-    for (auto it = begin; it != end; ++it) list += (it == begin ? "" : ", ") + JsonObject::quote(*it);
-    return list + "]";
-  };
-  const std::string specs = json_list(plan.specs.begin() + plan.references, plan.specs.end());
-  const std::string references = json_list(plan.specs.begin(), plan.specs.begin() + plan.references);
-  JsonObject meta;
-  meta.add("schema", "dabench-run-1")
-      .add("status", status)
-      .add("fingerprint", plan.fingerprint())
-      .add("command_line", options.command_line)
-      .add("experiment_path", plan.experiment.path)
-      .add("experiment_name", plan.experiment.name)
-      .add("experiment", plan.experiment.text)
-      .add("scenario", plan.experiment.scenario)
-      .add("seed", static_cast<long long>(plan.seed))
-      .add("trials_per_point", static_cast<long long>(plan.trials))
-      .add("points", static_cast<long long>(plan.point_params.size()))
-      .add("items_total", plan.items())
-      .add("items_done", items_done)
-      .add_raw("algorithms", specs)
-      .add_raw("references", references)
-      .add("git_commit", build.git_commit)
-      .add("compiler", build.compiler)
-      .add("flags", build.flags)
-      .add("build_type", build.build_type)
-      .add("threads", static_cast<long long>(plan.threads))
-      .add("processes", 1LL)
-      .add("host", host_name())
-      .add("resumed", resumed)
-      .add("start_time", started)
-      .add("end_time", status == "running" ? std::string() : utc_now())
-      .add("wall_seconds", wall_seconds)
-      .add("work_fraction", work_fraction);
-  if (plan.kind == RunKind::tracking) meta.add_raw("tracking_metrics", tracking_metrics_json(TrackingMetricsOptions{}));
-  if (plan.kind == RunKind::tbd) {
-    meta.add_raw("tbd_metrics",
-                 tbd_metrics_json(make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
-  }
-  if (plan.experiment.record_iterations) meta.add("record_iterations", true);
-  if (plan.experiment.record_beliefs) meta.add("record_beliefs", true);
-  return meta.str();
-}
-
 }  // namespace
 
 RunOutcome run_experiment(const RunOptions& options) {
   const RunPlan plan = make_run_plan(options);
-  const std::string started = utc_now();
-  OpenedTrials opened = open_trials_file(plan, options.resume, options.force,
-                                         meta_json(plan, options, started, "running", 0, 0.0, std::nan(""), false));
+  RunRecord record;
+  record.command_line = options.command_line;
+  record.status = "running";
+  record.start_time = utc_now();
+  record.hosts = host_name();
+  OpenedTrials opened = open_trials_file(plan, options.resume, options.force, run_meta_json(plan, record));
   if (!opened.resumed && !plan.experiment.record_iterations) {
     // A fresh run without `iterations = true` leaves no iterations.csv of an earlier run.
     std::error_code ignored;
@@ -192,10 +127,11 @@ RunOutcome run_experiment(const RunOptions& options) {
   std::vector<std::FILE*> files;
   for (const ItemFile& file : plan.item_files()) files.push_back(open_item_file(plan, file, opened.items_done, opened.resumed));
   files.push_back(opened.file);  // trials.csv last: the item files never hold fewer items
-  write_file_atomically(meta_path(plan), meta_json(plan, options, started, "running", opened.items_done, 0.0,
-                                                   std::nan(""), opened.resumed));
+  record.items_done = opened.items_done;
+  record.resumed = opened.resumed;
+  write_file_atomically(meta_path(plan), run_meta_json(plan, record));
 
-  const long long total_items = plan.items();
+  const long long total_items = plan.shard_items();
   const long long first_block = opened.items_done / kItemsPerBlock;
   // Resume points are whole items; realign so block boundaries stay item multiples.
   const long long skip_in_first = opened.items_done - first_block * kItemsPerBlock;
@@ -213,30 +149,26 @@ RunOutcome run_experiment(const RunOptions& options) {
     const auto* entry = tracking_scenario_registry().find(plan.experiment.scenario);
     for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
     const TrackingExecution execution(plan, std::move(scenarios), TrackingMetricsOptions{});
-    busy_seconds = run_blocks(execution, writer, progress, plan.threads, first_block, skip_in_first, total_items,
-                              items_finished);
+    busy_seconds = run_blocks(execution, plan, writer, progress, first_block, skip_in_first, items_finished);
   } else if (plan.kind == RunKind::tbd) {
     std::vector<std::unique_ptr<TbdScenario>> scenarios;
     const auto* entry = tbd_scenario_registry().find(plan.experiment.scenario);
     for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
     const TbdExecution execution(plan, std::move(scenarios),
                                  make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]"));
-    busy_seconds = run_blocks(execution, writer, progress, plan.threads, first_block, skip_in_first, total_items,
-                              items_finished);
+    busy_seconds = run_blocks(execution, plan, writer, progress, first_block, skip_in_first, items_finished);
   } else if (plan.kind == RunKind::multi_scan) {
     std::vector<std::unique_ptr<MultiScanScenario>> scenarios;
     const auto* entry = multi_scan_scenario_registry().find(plan.experiment.scenario);
     for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
     const MultiScanExecution execution(plan, std::move(scenarios));
-    busy_seconds = run_blocks(execution, writer, progress, plan.threads, first_block, skip_in_first, total_items,
-                              items_finished);
+    busy_seconds = run_blocks(execution, plan, writer, progress, first_block, skip_in_first, items_finished);
   } else {
     std::vector<std::unique_ptr<SingleScanScenario>> scenarios;
     const auto* entry = scenario_registry().find(plan.experiment.scenario);
     for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
     const SingleScanExecution execution(plan, std::move(scenarios));
-    busy_seconds = run_blocks(execution, writer, progress, plan.threads, first_block, skip_in_first, total_items,
-                              items_finished);
+    busy_seconds = run_blocks(execution, plan, writer, progress, first_block, skip_in_first, items_finished);
   }
   std::signal(SIGINT, previous_int);
   std::signal(SIGTERM, previous_term);
@@ -251,11 +183,13 @@ RunOutcome run_experiment(const RunOptions& options) {
   outcome.interrupted = outcome.items_written < total_items;
   outcome.output = plan.output;
   for (const ItemFile& file : plan.item_files()) outcome.item_files.push_back(file.name);
-  const double work_fraction = wall_seconds > 0.0 ? busy_seconds / (wall_seconds * plan.threads) : std::nan("");
   if (!outcome.interrupted) write_summary(trials_path(plan), summary_path(plan), plan.metric_columns());
-  write_file_atomically(meta_path(plan),
-                        meta_json(plan, options, started, outcome.interrupted ? "interrupted" : "complete",
-                                  outcome.items_written, wall_seconds, work_fraction, opened.resumed));
+  record.status = outcome.interrupted ? "interrupted" : "complete";
+  record.items_done = outcome.items_written;
+  record.end_time = utc_now();
+  record.wall_seconds = wall_seconds;
+  record.work_fraction = wall_seconds > 0.0 ? busy_seconds / (wall_seconds * plan.threads) : std::nan("");
+  write_file_atomically(meta_path(plan), run_meta_json(plan, record));
   return outcome;
 }
 

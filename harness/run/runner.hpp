@@ -16,6 +16,13 @@
 
 namespace dabench {
 
+// `--shard K/N`: this process runs shard K (1-based) of N (harness/run/run_plan.hpp says which
+// items) into its own folder; `dabench merge` joins the N folders.
+struct Shard {
+  int index = 1;
+  int count = 1;
+};
+
 struct RunOptions {
   std::string experiment_path;
   std::optional<std::int64_t> trials;   // overrides the file's `trials`
@@ -24,11 +31,12 @@ struct RunOptions {
   std::optional<std::string> output;    // overrides the file's `output`
   bool resume = false;                  // finish the run in the output folder
   bool force = false;                   // discard the run in the output folder
+  std::optional<Shard> shard;           // run one shard (default output: the file's + "-shard-K-of-N")
   std::string command_line;             // recorded in meta.json
 };
 
 struct RunOutcome {
-  long long items_total = 0;
+  long long items_total = 0;            // of this process: the plan's, or its shard's
   long long items_written = 0;
   bool interrupted = false;
   std::vector<std::string> item_files;  // written beside trials.csv (e.g. targets.csv)

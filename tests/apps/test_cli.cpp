@@ -4,19 +4,27 @@
 //    file behind (the working folder is byte-identical before and after);
 //  - `solve` prints target,measurement,probability with n·(m+1) rows, 1-based targets,
 //    measurement 0 = missed detection, rows summing to 1, and the closed-form marginals of a
-//    hand-computable 2×2 problem (also in --format json);
+//    hand-computable 2×2 problem (also in --format json); `solve --time` prints one parseable
+//    row (or JSON object) with a positive median inside its percentiles and the repetition count;
 //  - `run` rejects every bad experiment before creating its output folder, refuses a folder
 //    that holds a run unless --resume/--force (and then leaves it untouched), and refuses to
 //    resume a different run;
-//  - `list` names the algorithms, the scenarios and the experiment files.
+//  - `list` names the algorithms, the scenarios and the experiment files;
+//  - `run --shard K/N` and `merge`: merged shards equal the run; missing, duplicated, foreign,
+//    incomplete shards and bad K/N are one-line errors that leave no file;
+//  - `--version` and every command's `--help`/`-h` print on stdout and exit 0.
 #include <catch2/catch.hpp>
 
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "harness/core/build_info.hpp"
 #include "tests/support/cli_runner.hpp"
 
 using namespace dabench::test::cli;
@@ -398,6 +406,87 @@ TEST_CASE("cli solve: --format json reports fbp's free energy", "[cli][solve]") 
 }
 
 // ---------------------------------------------------------------------------------------------
+// solve --time
+
+TEST_CASE("cli solve --time: one CSV row with a positive median inside its percentiles", "[cli][solve]") {
+  // A tiny budget keeps the test fast; at least --time-min-samples batches are timed anyway.
+  TempDir dir;
+  dir.write("w.csv", kWeights2x2);
+  const CliResult result = run_ok(dir, {"solve", "--algorithm", "bp:delta=1e-9,check_every=1", "--weights", "w.csv",
+                                        "--time", "--time-budget", "0.05", "--time-min-samples", "12"});
+  INFO("stdout: " << result.out);
+  CHECK(result.err.empty());
+  const auto lines = split_lines(result.out);
+  REQUIRE(lines.size() == 2);
+  CHECK(lines[0] == "algorithm,targets,measurements,solves,samples,batch,median_us,p10_us,p90_us,median_interval,stable");
+  const auto fields = parse_csv_line(lines[1]);
+  REQUIRE(fields.size() == 11);
+  CHECK(fields[0] == "bp:delta=1e-9,check_every=1");  // quoted in the file, one field
+  CHECK(fields[1] == "2");
+  CHECK(fields[2] == "2");
+  const long long solves = std::stoll(fields[3]), samples = std::stoll(fields[4]), batch = std::stoll(fields[5]);
+  CHECK(samples >= 12);
+  CHECK(solves == samples * batch);
+  const double median = to_double(fields[6]), p10 = to_double(fields[7]), p90 = to_double(fields[8]);
+  CHECK(median > 0.0);
+  CHECK(median < 1e5);  // a 2×2 BP takes microseconds, not a tenth of a second
+  CHECK(p10 <= median);
+  CHECK(median <= p90);
+  CHECK(to_double(fields[9]) >= 0.0);
+  CHECK((fields[10] == "0" || fields[10] == "1"));
+  // Batches double until one lasts 1 ms: a power of two, and many microsecond solves.
+  CHECK(batch > 1);
+  CHECK((batch & (batch - 1)) == 0);
+}
+
+TEST_CASE("cli solve --time --format json parses and reports the same fields", "[cli][solve]") {
+  TempDir dir;
+  dir.write("w.csv", kWeights2x2);
+  const CliResult result = run_ok(dir, {"solve", "--algorithm", "exact", "--weights", "w.csv", "--time", "--format",
+                                        "json", "--time-budget", "0.02"});
+  INFO("stdout: " << result.out);
+  CHECK(JsonChecker(result.out).valid());
+  for (const char* key : {"\"algorithm\": \"exact\"", "\"solves\": ", "\"samples\": ", "\"batch\": ", "\"median_us\": ",
+                          "\"p10_us\": ", "\"p90_us\": ", "\"median_interval\": ", "\"stable\": "}) {
+    INFO("json should hold " << key);
+    CHECK(contains(result.out, key));
+  }
+  const auto at = result.out.find("\"median_us\": ");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::strtod(result.out.c_str() + at + 13, nullptr) > 0.0);
+  CHECK(std::strtoll(result.out.c_str() + result.out.find("\"samples\": ") + 11, nullptr, 10) >= 10);
+}
+
+TEST_CASE("cli solve --time: bad combinations are one-line errors", "[cli][solve]") {
+  TempDir dir;
+  dir.write("w.csv", kWeights2x2);
+  const std::vector<std::string> base = {"solve", "--algorithm", "bp", "--weights", "w.csv"};
+  const auto with = [&base](std::vector<std::string> more) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+  };
+  expect_error(dir, with({"--time-budget", "1"}), {"--time-budget", "--time"});
+  expect_error(dir, with({"--time-min-samples", "5"}), {"--time-min-samples", "--time"});
+  expect_error(dir, with({"--time", "--time-budget", "0"}), {"--time-budget", "0"});
+  expect_error(dir, with({"--time", "--time-budget", "-1"}), {"--time-budget"});
+  expect_error(dir, with({"--time", "--time-budget", "soon"}), {"time-budget", "soon"});
+  expect_error(dir, with({"--time", "--time-min-samples", "0"}), {"--time-min-samples", "0"});
+  expect_error(dir, with({"--time", "--format", "xml"}), {"format", "xml"});
+}
+
+TEST_CASE("cli solve --time: a refused problem exits 3 without timing", "[cli][solve]") {
+  TempDir dir;
+  std::string ones;
+  for (int i = 0; i < 6; ++i) ones += "1,1,1,1,1,1\n";
+  dir.write("dense.csv", ones);
+  const CliResult result = run_dabench(dir, {"solve", "--algorithm", "exact:max_events=10", "--weights", "dense.csv", "--time"});
+  CHECK(result.status == 3);
+  CHECK(result.out.empty());
+  CHECK(contains(result.err, "skipped:"));
+}
+
+// ---------------------------------------------------------------------------------------------
 // run: errors (each leaves the working folder untouched: no output folder, no file)
 
 TEST_CASE("cli run: the good base experiment runs", "[cli][run]") {
@@ -562,6 +651,97 @@ TEST_CASE("cli run: a folder holding a run is refused and left byte-identical", 
 }
 
 // ---------------------------------------------------------------------------------------------
+// run --shard and merge
+
+namespace {
+
+// Columns of trials.csv but time_us.
+CsvTable without_time(const CsvTable& table) {
+  const std::size_t time = table.column("time_us");
+  CsvTable kept = table;
+  kept.header.erase(kept.header.begin() + static_cast<std::ptrdiff_t>(time));
+  for (auto& row : kept.rows) row.erase(row.begin() + static_cast<std::ptrdiff_t>(time));
+  return kept;
+}
+
+// kGoodExperiment (6 items: one block, so shards 2 and 3 of 3 are empty) as shards s1..s3 of 3.
+void run_three_shards(const TempDir& dir) {
+  dir.write("e.ini", kGoodExperiment);
+  for (const char* k : {"1", "2", "3"}) run_ok(dir, {"run", "e.ini", "--threads", "1", "--shard", std::string(k) + "/3", "--out", std::string("s") + k});
+}
+
+}  // namespace
+
+TEST_CASE("cli merge: shards merged from the command line equal the run", "[cli][shard]") {
+  TempDir dir;
+  run_three_shards(dir);
+  run_ok(dir, {"run", "e.ini", "--threads", "1", "--out", "full"});
+  const CliResult merged = run_ok(dir, {"merge", "m", "s3", "s1", "s2"});
+  CHECK(contains(merged.err, "merged 3 shards, 6 trials"));
+  CHECK(without_time(parse_csv(dir.read("m/trials.csv"))).rows == without_time(parse_csv(dir.read("full/trials.csv"))).rows);
+  CHECK(dir.exists("m/summary.csv"));
+  CHECK(contains(dir.read("m/meta.json"), "\"processes\": 3"));
+  // Without --out a shard goes beside the experiment's output folder.
+  run_ok(dir, {"run", "e.ini", "--threads", "1", "--shard", "2/2"});
+  CHECK(dir.exists("out-shard-2-of-2/trials.csv"));
+  CHECK(contains(dir.read("out-shard-2-of-2/meta.json"), "\"shard\": \"2/2\""));
+  // --force replaces a merged run.
+  expect_error(dir, {"merge", "m", "s1", "s2", "s3"}, {"m", "--force"});
+  run_ok(dir, {"merge", "m", "s1", "s2", "s3", "--force"});
+}
+
+TEST_CASE("cli merge: missing, duplicated, foreign or incomplete shards are one-line errors", "[cli][shard]") {
+  TempDir dir;
+  run_three_shards(dir);
+  SECTION("missing") { expect_error(dir, {"merge", "m", "s1", "s3"}, {"missing", "2/3"}); }
+  SECTION("duplicated") { expect_error(dir, {"merge", "m", "s1", "s2", "s3", "s2"}, {"2/3", "twice"}); }
+  SECTION("another seed") {
+    run_ok(dir, {"run", "e.ini", "--threads", "1", "--shard", "2/3", "--seed", "6", "--out", "f2"});
+    expect_error(dir, {"merge", "m", "s1", "f2", "s3"}, {"f2", "another run"});
+  }
+  SECTION("another experiment") {
+    std::string text = kGoodExperiment;
+    text.replace(text.find("spacing = 1, 2"), 14, "spacing = 1, 3");
+    dir.write("e2.ini", text);
+    run_ok(dir, {"run", "e2.ini", "--threads", "1", "--shard", "3/3", "--out", "f3"});
+    expect_error(dir, {"merge", "m", "s1", "s2", "f3"}, {"f3", "another run"});
+  }
+  SECTION("another split") {
+    run_ok(dir, {"run", "e.ini", "--threads", "1", "--shard", "2/2", "--out", "h2"});
+    expect_error(dir, {"merge", "m", "s1", "h2", "s3"}, {"h2", "2/2"});
+  }
+  SECTION("not a shard") {
+    run_ok(dir, {"run", "e.ini", "--threads", "1", "--out", "full"});
+    expect_error(dir, {"merge", "m", "s1", "full", "s3"}, {"full", "not a shard"});
+  }
+  SECTION("incomplete") {
+    std::string meta = dir.read("s2/meta.json");
+    meta.replace(meta.find("\"status\": \"complete\""), 20, "\"status\": \"interrupted\"");
+    dir.write("s2/meta.json", meta);
+    expect_error(dir, {"merge", "m", "s1", "s2", "s3"}, {"s2", "interrupted", "--resume"});
+  }
+  SECTION("rows of another shard") {
+    dir.write("s3/trials.csv", dir.read("s1/trials.csv"));
+    expect_error(dir, {"merge", "m", "s1", "s2", "s3"}, {"s3/trials.csv", "shard 3/3"});
+  }
+  SECTION("not a folder") { expect_error(dir, {"merge", "m", "s1", "nothere", "s3"}, {"nothere", "meta.json"}); }
+  SECTION("no shards") { expect_error(dir, {"merge", "m"}, {"merge", "shard folders"}); }
+  SECTION("into a shard") { expect_error(dir, {"merge", "s1", "s1", "s2", "s3"}, {"s1", "shard 1/3"}); }
+}
+
+TEST_CASE("cli run --shard: bad values and a resume of another shard are one-line errors", "[cli][shard]") {
+  TempDir dir;
+  dir.write("e.ini", kGoodExperiment);
+  for (const char* bad : {"0/3", "4/3", "3", "a/b", "1/0", "-1/2"}) {
+    INFO("--shard " << bad);
+    expect_error(dir, {"run", "e.ini", "--shard", bad}, {"--shard", bad});
+  }
+  run_ok(dir, {"run", "e.ini", "--threads", "1", "--shard", "1/2", "--out", "s"});
+  expect_error(dir, {"run", "e.ini", "--shard", "2/2", "--out", "s", "--resume"}, {"s", "shard 1/2", "shard 2/2"});
+  expect_error(dir, {"run", "e.ini", "--out", "s", "--resume"}, {"s", "shard 1/2", "no shard"});
+}
+
+// ---------------------------------------------------------------------------------------------
 // commands
 
 TEST_CASE("cli: unknown or missing command fails without stdout", "[cli]") {
@@ -608,4 +788,60 @@ TEST_CASE("cli help: prints the usage on stdout", "[cli]") {
   const CliResult result = run_ok(dir, {"--help"});
   CHECK(contains(result.out, "dabench solve"));
   CHECK(contains(result.out, "dabench run"));
+  CHECK(contains(result.out, "dabench merge"));
+  CHECK(contains(result.out, "dabench --version"));
+  CHECK(contains(result.out, "dabench COMMAND --help"));
+  CHECK(result.err.empty());
+}
+
+TEST_CASE("cli help: --help and -h on every command print its usage and options, exit 0", "[cli]") {
+  // Each command's own options appear; required options and the experiment are not needed, and
+  // --help wins over the other words of a valid command line. Nothing is written.
+  TempDir dir;
+  dir.write("e.ini", kGoodExperiment);
+  const auto before = snapshot(dir.work());
+  const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
+      {{"list", "--help"}, {"usage: dabench list\n", "--help"}},
+      {{"list", "-h"}, {"usage: dabench list\n"}},
+      {{"solve", "--help"}, {"usage: dabench solve --algorithm SPEC", "--algorithm", "--weights", "--format", "--pd"}},
+      {{"solve", "-h", "--algorithm", "bp"}, {"usage: dabench solve"}},
+      {{"run", "--help"}, {"usage: dabench run EXPERIMENT.ini", "--trials", "--threads", "--resume", "--force"}},
+      {{"run", "e.ini", "--trials", "2", "-h"}, {"usage: dabench run"}},
+      {{"merge", "--help"}, {"usage: dabench merge OUT SHARD_DIR", "--force"}},
+  };
+  for (const auto& [args, mentions] : cases) {
+    std::string shown;
+    for (const auto& arg : args) shown += " " + arg;
+    INFO("dabench" << shown);
+    const CliResult result = run_ok(dir, args);
+    CHECK(result.err.empty());
+    CHECK(result.out.rfind("usage: dabench " + args[0], 0) == 0);
+    for (const auto& part : mentions) {
+      INFO("the usage should mention: " << part);
+      CHECK(contains(result.out, part));
+    }
+  }
+  CHECK_FALSE(contains(run_ok(dir, {"solve", "--help"}).out, "--resume"));  // its own options only
+  CHECK(snapshot(dir.work()) == before);
+}
+
+TEST_CASE("cli --version: program name, project version and the build's git commit", "[cli]") {
+  TempDir dir;
+  const CliResult result = run_ok(dir, {"--version"});
+  CHECK(result.err.empty());
+  const dabench::BuildInfo& build = dabench::build_info();
+  CHECK(build.version == DABENCH_PROJECT_VERSION);  // CMake's project(VERSION) reaches the program
+  const std::string expected =
+      build.git_commit == "unknown"
+          ? fmt::format("dabench {}\n", DABENCH_PROJECT_VERSION)
+          : fmt::format("dabench {} (git {})\n", DABENCH_PROJECT_VERSION, build.git_commit);
+  CHECK(result.out == expected);
+  CHECK(snapshot(dir.work()).empty());
+}
+
+TEST_CASE("cli: extra words after list, --help or --version are one-line errors", "[cli]") {
+  TempDir dir;
+  expect_error(dir, {"list", "extra"}, {"list"});
+  expect_error(dir, {"--version", "extra"}, {"--version", "extra"});
+  expect_error(dir, {"--help", "extra"}, {"extra"});
 }

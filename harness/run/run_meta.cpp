@@ -1,0 +1,78 @@
+#include "harness/run/run_meta.hpp"
+
+#include <unistd.h>
+
+#include <ctime>
+
+#include "harness/core/build_info.hpp"
+#include "harness/core/json.hpp"
+#include "harness/core/params.hpp"
+#include "harness/run/tbd_execution.hpp"
+#include "harness/run/tracking_execution.hpp"
+
+namespace dabench {
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm parts{};
+  gmtime_r(&now, &parts);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &parts);
+  return text;
+}
+
+std::string host_name() {
+  char name[256] = {};
+  return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string("unknown");
+}
+
+std::string run_meta_json(const RunPlan& plan, const RunRecord& record) {
+  const BuildInfo& build = build_info();
+  const auto json_list = [](auto begin, auto end) {
+    std::string list = "[";
+    for (auto it = begin; it != end; ++it) list += (it == begin ? "" : ", ") + JsonObject::quote(*it);
+    return list + "]";
+  };
+  const std::string specs = json_list(plan.specs.begin() + plan.references, plan.specs.end());
+  const std::string references = json_list(plan.specs.begin(), plan.specs.begin() + plan.references);
+  JsonObject meta;
+  meta.add("schema", "dabench-run-1")
+      .add("status", record.status)
+      .add("fingerprint", plan.fingerprint());
+  if (plan.shard) meta.add("shard", plan.shard_label()).add("shard_items", plan.shard_items());
+  meta.add("command_line", record.command_line)
+      .add("experiment_path", plan.experiment.path)
+      .add("experiment_name", plan.experiment.name)
+      .add("experiment", plan.experiment.text)
+      .add("scenario", plan.experiment.scenario)
+      .add("seed", static_cast<long long>(plan.seed))
+      .add("trials_per_point", static_cast<long long>(plan.trials))
+      .add("points", static_cast<long long>(plan.point_params.size()))
+      .add("items_total", plan.items())
+      .add("items_done", record.items_done)
+      .add_raw("algorithms", specs)
+      .add_raw("references", references)
+      .add("version", build.version)
+      .add("git_commit", build.git_commit)
+      .add("compiler", build.compiler)
+      .add("flags", build.flags)
+      .add("build_type", build.build_type)
+      .add("threads", static_cast<long long>(plan.threads))
+      .add("processes", record.processes)
+      .add("host", record.hosts)
+      .add("resumed", record.resumed)
+      .add("start_time", record.start_time)
+      .add("end_time", record.end_time)
+      .add("wall_seconds", record.wall_seconds)
+      .add("work_fraction", record.work_fraction);
+  if (plan.kind == RunKind::tracking) meta.add_raw("tracking_metrics", tracking_metrics_json(TrackingMetricsOptions{}));
+  if (plan.kind == RunKind::tbd) {
+    meta.add_raw("tbd_metrics",
+                 tbd_metrics_json(make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
+  }
+  if (plan.experiment.record_iterations) meta.add("record_iterations", true);
+  if (plan.experiment.record_beliefs) meta.add("record_beliefs", true);
+  return meta.str();
+}
+
+}  // namespace dabench

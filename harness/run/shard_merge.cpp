@@ -1,0 +1,314 @@
+#include "harness/run/shard_merge.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "harness/core/atomic_file.hpp"
+#include "harness/core/csv.hpp"
+#include "harness/core/errors.hpp"
+#include "harness/core/json.hpp"
+#include "harness/core/params.hpp"
+#include "harness/core/summary.hpp"
+#include "harness/run/run_folder.hpp"
+#include "harness/run/run_meta.hpp"
+#include "harness/run/run_plan.hpp"
+
+namespace dabench {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read_all(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+// A shard folder as its meta.json describes it.
+struct ShardFolder {
+  std::string path;
+  std::string meta;
+  std::string label;  // "K/N"
+  int index = 0, count = 0;
+
+  std::string field(std::string_view key) const {
+    const auto value = json_value(meta, key);
+    if (!value) throw InputError(fmt::format("{}/meta.json: no '{}' field", path, key));
+    return *value;
+  }
+  double number(std::string_view key) const {
+    double value = std::nan("");
+    return parse_double(json_value(meta, key).value_or(""), value) ? value : std::nan("");
+  }
+};
+
+ShardFolder read_shard(const std::string& path) {
+  const fs::path meta = fs::path(path) / "meta.json";
+  if (!fs::is_regular_file(meta)) throw InputError(fmt::format("{}: no meta.json (not a run folder)", path));
+  ShardFolder folder{path, read_all(meta), "", 0, 0};
+  const auto label = json_value(folder.meta, "shard");
+  if (!label) throw InputError(fmt::format("{}: not a shard (its run had no --shard K/N)", path));
+  folder.label = *label;
+  std::int64_t index = 0, count = 0;
+  const auto slash = label->find('/');
+  if (slash == std::string::npos || !parse_int64(label->substr(0, slash), index) ||
+      !parse_int64(label->substr(slash + 1), count) || index < 1 || index > count) {
+    throw InputError(fmt::format("{}/meta.json: malformed shard '{}'", path, *label));
+  }
+  folder.index = static_cast<int>(index);
+  folder.count = static_cast<int>(count);
+  const std::string status = folder.field("status");
+  if (status != "complete") {
+    throw InputError(fmt::format("{}: shard {} is {} ({} of {} items done); finish it with its dabench run command and "
+                                 "--resume", path, folder.label, status, folder.field("items_done"),
+                                 json_value(folder.meta, "shard_items").value_or("?")));
+  }
+  return folder;
+}
+
+// The shards, checked to be one plan's 1..N each once, ordered by K.
+std::vector<ShardFolder> read_shards(const std::vector<std::string>& paths) {
+  if (paths.empty()) throw InputError("merge: no shard folders given");
+  std::vector<ShardFolder> given;
+  for (const std::string& path : paths) given.push_back(read_shard(path));
+  const ShardFolder& first = given.front();
+  for (const ShardFolder& folder : given) {
+    if (folder.field("fingerprint") != first.field("fingerprint")) {
+      throw InputError(fmt::format("{}: a shard of another run plan (fingerprint {}, but {} has {})", folder.path,
+                                   folder.field("fingerprint"), first.path, first.field("fingerprint")));
+    }
+    if (folder.field("seed") != first.field("seed")) {
+      throw InputError(fmt::format("{}: a shard of another run (seed {}, but {} has {})", folder.path,
+                                   folder.field("seed"), first.path, first.field("seed")));
+    }
+    if (folder.field("experiment") != first.field("experiment")) {
+      throw InputError(fmt::format("{}: a shard of another run (its experiment text differs from {}'s)", folder.path,
+                                   first.path));
+    }
+    if (folder.count != first.count) {
+      throw InputError(fmt::format("{}: shard {} of a split into {}, but {} is shard {}", folder.path, folder.label,
+                                   folder.count, first.path, first.label));
+    }
+  }
+  std::vector<const ShardFolder*> by_index(static_cast<std::size_t>(first.count), nullptr);
+  for (const ShardFolder& folder : given) {
+    const ShardFolder*& slot = by_index[static_cast<std::size_t>(folder.index - 1)];
+    if (slot != nullptr) {
+      throw InputError(fmt::format("shard {} given twice: {} and {}", folder.label, slot->path, folder.path));
+    }
+    slot = &folder;
+  }
+  std::string missing;
+  for (int k = 1; k <= first.count; ++k) {
+    if (by_index[static_cast<std::size_t>(k - 1)] == nullptr) missing += fmt::format("{}{}/{}", missing.empty() ? "" : ", ", k, first.count);
+  }
+  if (!missing.empty()) {
+    throw InputError(fmt::format("shards missing: {} (given {} of {})", missing, given.size(), first.count));
+  }
+  std::vector<ShardFolder> ordered;
+  for (const ShardFolder* folder : by_index) ordered.push_back(*folder);
+  return ordered;
+}
+
+// The plan of the shards' run, rebuilt from the experiment text, seed and trials they record.
+RunPlan rebuild_plan(const ShardFolder& shard, const std::string& output) {
+  RunOptions options;
+  std::int64_t trials = 0, seed = 0;
+  if (!parse_int64(shard.field("trials_per_point"), trials) || !parse_int64(shard.field("seed"), seed)) {
+    throw InputError(fmt::format("{}/meta.json: malformed trials_per_point or seed", shard.path));
+  }
+  options.trials = trials;
+  options.seed = static_cast<std::uint64_t>(seed);
+  options.threads = 1;
+  options.output = output;
+  RunPlan plan;
+  try {
+    plan = make_run_plan(parse_experiment(shard.field("experiment_path"), shard.field("experiment")), options);
+  } catch (const InputError& error) {
+    throw InputError(fmt::format("{}/meta.json: its experiment no longer makes a run plan: {}", shard.path, error.what()));
+  }
+  if (plan.fingerprint() != shard.field("fingerprint")) {
+    throw InputError(fmt::format("{}: its experiment now gives fingerprint {}, not the recorded {} (algorithms or "
+                                 "defaults changed since the shards ran?)", shard.path, plan.fingerprint(),
+                                 shard.field("fingerprint")));
+  }
+  return plan;
+}
+
+// One shard's file, read row by row with each row's item (point · trials + trial).
+class ShardRows {
+ public:
+  ShardRows(const RunPlan& plan, const fs::path& path, const std::string& header) : plan_(plan), path_(path.string()), in_(path) {
+    std::string first;
+    if (!in_ || !std::getline(in_, first) || first + "\n" != header) {
+      throw InputError(fmt::format("{}: missing, or its header differs from the plan's", path_));
+    }
+    trial_column_ = plan.point_params.front().size() + 1;
+    advance();
+  }
+  bool has_row() const { return has_row_; }
+  long long item() const { return item_; }
+  const std::string& row() const { return row_; }
+  void advance() {
+    has_row_ = static_cast<bool>(std::getline(in_, row_));
+    if (!has_row_) return;
+    ++line_;
+    std::int64_t point = 0, trial = 0;
+    if (!split_csv_line(row_, fields_) || fields_.size() <= trial_column_ || !parse_int64(fields_[0], point) ||
+        !parse_int64(fields_[trial_column_], trial) || point < 0 ||
+        point >= static_cast<std::int64_t>(plan_.point_params.size()) || trial < 0 || trial >= plan_.trials) {
+      throw InputError(fmt::format("{}:{}: malformed row", path_, line_));
+    }
+    item_ = point * plan_.trials + trial;
+  }
+  std::string where() const { return fmt::format("{}:{}", path_, line_); }
+
+ private:
+  const RunPlan& plan_;
+  std::string path_;
+  std::ifstream in_;
+  std::size_t trial_column_ = 0;
+  std::vector<std::string> fields_;
+  std::string row_;
+  bool has_row_ = false;
+  long long item_ = -1, line_ = 1;
+};
+
+// Writes `name` of the merged run to `target`: block b of the plan's items comes from shard
+// b mod N, whose rows must be exactly its blocks' items in order (`rows_per_item` rows each
+// when not 0).
+void merge_file(const RunPlan& plan, const std::vector<ShardFolder>& shards, const std::string& name,
+                const std::string& header, long long rows_per_item, const fs::path& target) {
+  std::vector<ShardRows> readers;
+  readers.reserve(shards.size());
+  for (const ShardFolder& shard : shards) readers.emplace_back(plan, fs::path(shard.path) / name, header);
+  std::FILE* out = std::fopen(target.c_str(), "wb");
+  if (out == nullptr) throw InputError(fmt::format("{}: cannot open for writing", target.string()));
+  bool written = std::fputs(header.c_str(), out) >= 0;
+  const auto shard_count = static_cast<long long>(shards.size());
+  const long long blocks = (plan.items() + kItemsPerBlock - 1) / kItemsPerBlock;
+  try {
+    for (long long block = 0; block < blocks && written; ++block) {
+      const auto s = static_cast<std::size_t>(block % shard_count);
+      ShardRows& reader = readers[s];
+      const long long begin = block * kItemsPerBlock, end = std::min(plan.items(), begin + kItemsPerBlock);
+      std::array<long long, kItemsPerBlock> rows{};
+      long long last = begin;
+      while (reader.has_row() && reader.item() < end) {
+        if (reader.item() < last) {
+          throw InputError(fmt::format("{}: row of point {}, trial {} is not shard {}'s next item", reader.where(),
+                                       reader.item() / plan.trials, reader.item() % plan.trials, shards[s].label));
+        }
+        last = reader.item();
+        ++rows[static_cast<std::size_t>(reader.item() - begin)];
+        written = written && std::fputs(reader.row().c_str(), out) >= 0 && std::fputc('\n', out) != EOF;
+        reader.advance();
+      }
+      for (long long item = begin; item < end && rows_per_item > 0; ++item) {
+        if (rows[static_cast<std::size_t>(item - begin)] != rows_per_item) {
+          throw InputError(fmt::format("{}/{}: point {}, trial {} has {} rows, not {}", shards[s].path, name,
+                                       item / plan.trials, item % plan.trials, rows[static_cast<std::size_t>(item - begin)],
+                                       rows_per_item));
+        }
+      }
+    }
+    for (std::size_t s = 0; s < readers.size(); ++s) {
+      if (readers[s].has_row()) {
+        throw InputError(fmt::format("{}: row of point {}, trial {} is not shard {}'s", readers[s].where(),
+                                     readers[s].item() / plan.trials, readers[s].item() % plan.trials, shards[s].label));
+      }
+    }
+  } catch (...) {
+    std::fclose(out);
+    throw;
+  }
+  if (std::fclose(out) != 0 || !written) throw InputError(fmt::format("{}: write failed (disk full?)", target.string()));
+}
+
+// meta.json's process fields of the merged run, from the shards'.
+RunRecord merged_record(const std::vector<ShardFolder>& shards, const std::string& command_line, long long items) {
+  RunRecord record;
+  record.command_line = command_line;
+  record.status = "complete";
+  record.items_done = items;
+  record.processes = static_cast<long long>(shards.size());
+  std::set<std::string> seen_hosts;
+  double busy = 0.0, capacity = 0.0;
+  for (const ShardFolder& shard : shards) {
+    const std::string start = shard.field("start_time"), end = shard.field("end_time"), host = shard.field("host");
+    if (record.start_time.empty() || start < record.start_time) record.start_time = start;
+    if (end > record.end_time) record.end_time = end;
+    if (seen_hosts.insert(host).second) record.hosts += (record.hosts.empty() ? "" : ",") + host;
+    record.resumed = record.resumed || shard.field("resumed") == "true";
+    const double wall = shard.number("wall_seconds"), threads = shard.number("threads"), fraction = shard.number("work_fraction");
+    if (std::isfinite(wall)) record.wall_seconds += wall;
+    if (std::isfinite(wall) && std::isfinite(threads) && std::isfinite(fraction)) {
+      busy += fraction * wall * threads;
+      capacity += wall * threads;
+    }
+  }
+  record.work_fraction = capacity > 0.0 ? busy / capacity : std::nan("");
+  return record;
+}
+
+}  // namespace
+
+MergeOutcome merge_shards(const MergeOptions& options) {
+  const std::vector<ShardFolder> shards = read_shards(options.shards);
+  for (const ShardFolder& shard : shards) {
+    std::error_code error;
+    if (fs::exists(options.output) && fs::equivalent(options.output, shard.path, error)) {
+      throw InputError(fmt::format("{}: is shard {}; merge into another folder", options.output, shard.label));
+    }
+  }
+  RunPlan plan = rebuild_plan(shards.front(), options.output);
+  for (const ShardFolder& shard : shards) {
+    plan.threads = std::max(plan.threads, static_cast<int>(std::max(1.0, shard.number("threads"))));
+  }
+  const bool holds_run = fs::exists(trials_path(plan)) || fs::exists(meta_path(plan));
+  if (holds_run && !options.force) {
+    throw InputError(fmt::format("{}: already holds a run; use --force to replace it", options.output));
+  }
+
+  std::error_code error;
+  const bool created = !fs::exists(options.output);
+  fs::create_directories(options.output, error);
+  if (error) throw InputError(fmt::format("{}: cannot create output folder ({})", options.output, error.message()));
+  std::vector<ItemFile> files = plan.item_files();
+  files.push_back({"trials.csv", plan.trials_header()});
+  std::vector<fs::path> temporaries;
+  try {
+    for (const ItemFile& file : files) {
+      temporaries.push_back(fs::path(options.output) / (file.name + ".merging"));
+      merge_file(plan, shards, file.name, file.header,
+                 file.name == "trials.csv" ? static_cast<long long>(plan.specs.size()) : 0, temporaries.back());
+    }
+  } catch (...) {
+    for (const fs::path& temporary : temporaries) fs::remove(temporary, error);
+    if (created) fs::remove(options.output, error);
+    throw;
+  }
+  fs::remove(meta_path(plan), error);
+  fs::remove(summary_path(plan), error);
+  for (std::size_t k = 0; k < files.size(); ++k) fs::rename(temporaries[k], fs::path(options.output) / files[k].name);
+  write_summary(trials_path(plan), summary_path(plan), plan.metric_columns());
+  write_file_atomically(meta_path(plan), run_meta_json(plan, merged_record(shards, options.command_line, plan.items())));
+
+  MergeOutcome outcome;
+  outcome.items = plan.items();
+  outcome.shards = static_cast<int>(shards.size());
+  for (const ItemFile& file : plan.item_files()) outcome.item_files.push_back(file.name);
+  return outcome;
+}
+
+}  // namespace dabench
