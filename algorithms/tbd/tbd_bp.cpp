@@ -24,6 +24,7 @@ std::string TbdBpOptions::validate() const {
   if (!(pruning_threshold >= 0.0 && pruning_threshold < detection_threshold)) {
     return "pruning_threshold must be in [0, detection_threshold)";
   }
+  if (!(merge_distance >= 0.0 && merge_distance <= 100.0)) return "merge_distance must be in [0, 100]";
   return {};
 }
 
@@ -119,7 +120,7 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
 
   // 3. Legacy POs of this step's run: belief, existence, prune, resample (the new POs
   //    appended after them are kept as they are).
-  std::vector<bool> keep(legacy_count, false);
+  keep_.assign(legacy_count, false);
   for (int n = 0; n < legacy_count; ++n) {
     ParticleObject& o = legacy_[n];
     const double log_odds = messages_.existence_log_odds(n);
@@ -132,18 +133,46 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     for (double& w : o.weight) w /= sum;
     o.existence = logistic(log_odds);
     resample(o, p, rng_, scratch_);
-    keep[n] = true;
+    keep_[n] = true;
   }
   int kept = 0;
   for (int n = 0; n < static_cast<int>(legacy_.size()); ++n) {
-    if (n >= legacy_count || keep[n]) std::swap(legacy_[kept++], legacy_[n]);
+    if (n >= legacy_count || keep_[n]) std::swap(legacy_[kept++], legacy_[n]);
   }
   legacy_.resize(kept);
+  if (options_.merge_distance > 0.0) merge_duplicates();
 
   estimates.clear();
   for (const ParticleObject& o : legacy_) {
     if (o.existence > options_.detection_threshold) estimates.push_back({o.mean(), o.existence, o.label});
   }
+}
+
+// Step 5 of the header: in decreasing r̃ (ties: older first), delete a PO within
+// merge_distance of one already kept.
+void TbdBp::merge_duplicates() {
+  order_.resize(legacy_.size());
+  for (int n = 0; n < static_cast<int>(order_.size()); ++n) order_[n] = n;
+  std::sort(order_.begin(), order_.end(), [&](int a, int b) {
+    return legacy_[a].existence != legacy_[b].existence ? legacy_[a].existence > legacy_[b].existence
+                                                        : legacy_[a].label < legacy_[b].label;
+  });
+  keep_.assign(legacy_.size(), false);
+  kept_means_.clear();
+  const double limit = options_.merge_distance * options_.merge_distance;
+  for (const int n : order_) {
+    const Eigen::Vector2d mean = legacy_[n].mean().head<2>();
+    bool duplicate = false;
+    for (const Eigen::Vector2d& other : kept_means_) duplicate = duplicate || (mean - other).squaredNorm() < limit;
+    if (duplicate) continue;
+    keep_[n] = true;
+    kept_means_.push_back(mean);
+  }
+  int kept = 0;
+  for (int n = 0; n < static_cast<int>(legacy_.size()); ++n) {
+    if (keep_[n]) std::swap(legacy_[kept++], legacy_[n]);
+  }
+  legacy_.resize(kept);
 }
 
 void TbdBp::beliefs(std::vector<TbdBeliefSample>& samples) const {

@@ -34,7 +34,11 @@
 //     (systematic). A kept new PO becomes a legacy PO: P particles drawn from its α (uniform in
 //     the cell, velocity prior) and weighted by Π_j κ̃ at their positions (the messages it was
 //     evaluated with), then resampled.
-//  5. Estimates: every PO with r̃ > detection_threshold, at its particle mean.
+//  5. Duplicates [R] (`merge_distance`, off by default; tbd-bp-model.md §3.4 proposes merging
+//     new POs closer than 1 m): in decreasing r̃, a PO whose mean lies within merge_distance
+//     of a PO already kept is deleted. Measured in results/tbd/REPORT.md: at L = 2 POs pile up
+//     where crossing objects were, each over-explained cell making the others' ratios near 1.
+//  6. Estimates: every PO with r̃ > detection_threshold, at its particle mean.
 // Cost per step: O(L Σ_n P |W_n| + J Q² |W|), linear in the number of POs (supplement §3).
 // Runtime per step: bench/tbd/bench_tbd.cpp (tbd_bp_l1/*, tbd_bp_l2/*, by number of objects).
 // Particles: P = 2000 by default, not the 10 000 of the Meyer group's code ([K] of the notes):
@@ -62,6 +66,7 @@ struct TbdBpOptions {
   bool exact_kappa = false;          // exact κ of eq (5) instead of κ̃ (at most two POs per cell)
   bool interaction = true;           // false: the Σ_{n'≠n} terms of eqs (5), (9) are dropped
   int schedule = 0;                  // legacy POs: 0 serial, 1 flooding (see the header)
+  double merge_distance = 0.0;       // m; > 0: of POs whose means are closer, keep the likeliest (off)
   std::int64_t seed = 0;             // stream selector
 
   void bind(ParamList& p) {
@@ -74,6 +79,7 @@ struct TbdBpOptions {
     p.add("exact_kappa", exact_kappa, "exact messages of eq (5) (small problems: at most two POs per cell)");
     p.add("interaction", interaction, "false drops the other POs' terms of eqs (5), (9)");
     p.add_choice("schedule", schedule, {"serial", "flooding"}, "legacy POs' message schedule within an iteration");
+    p.add("merge_distance", merge_distance, "delete a PO whose mean is within this distance (m) of a PO with higher existence, in [0, 100]; 0: off");
     p.add("seed", seed, "stream selector: another value draws other particles on the same trial");
   }
   std::string validate() const;  // "" if valid
@@ -97,6 +103,7 @@ class TbdBp final : public TbdTracker {
 
  private:
   void make_new_objects();
+  void merge_duplicates();
   double support_radius() const;  // window margin, m
 
   Options options_;
@@ -108,6 +115,8 @@ class TbdBp final : public TbdTracker {
   std::vector<CellMessages::Work> birth_work_;
   std::vector<ParticleObject*> all_;
   std::vector<int> order_;
+  std::vector<bool> keep_;                // per legacy PO of this step's run
+  std::vector<Eigen::Vector2d> kept_means_;  // merge_distance: means of the POs kept so far
   ParticleObject scratch_;
   CellMessages messages_;
 };

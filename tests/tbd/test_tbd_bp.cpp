@@ -358,3 +358,44 @@ TEST_CASE("tbd-bp: exact kappa with births on a grid is skipped", "[tbd][tbd_bp]
   CHECK(report.skipped.find("exact_kappa") != std::string::npos);
   CHECK(estimates.empty());
 }
+
+TEST_CASE("tbd-bp: merge_distance deletes a duplicate PO and keeps distant ones", "[tbd][tbd_bp]") {
+  // One object at (5.5, 6.5) and two legacy POs on it (r = 0.9), a third object 4 m away with
+  // its own PO; no births.
+  TbdProblem p = grid_problem(12, TbdSignal::deterministic, kSeed, 9);
+  p.filter.birth_mean = 0.0;
+  auto prior_at = [](double x, double y) {
+    TbdPrior prior;
+    prior.mean = Eigen::Vector4d(x, y, 0.0, 0.0);
+    prior.covariance = Eigen::Vector4d(0.01, 0.01, 1e-4, 1e-4).asDiagonal();
+    prior.existence = 0.9;
+    return prior;
+  };
+  p.initial_objects = {prior_at(5.5, 6.5), prior_at(5.7, 6.4), prior_at(9.5, 6.5)};
+  RandomStream rng(kSeed, 9, 0);
+  p.frames.push_back(draw_frame(p.sensor, p.amplitude, {{5.5, 6.5}, {9.5, 6.5}}, rng));
+  for (const double distance : {0.0, 1.0}) {
+    INFO("merge_distance " << distance);
+    TbdBpOptions options;
+    options.particles = 500;
+    options.iterations = 1;
+    options.interaction = false;  // both duplicates claim the object: r̃ ≈ 1 each
+    options.merge_distance = distance;
+    TbdBp tracker(options);
+    const auto estimates = run_all(tracker, p);
+    const auto& objects = tracker.objects();
+    if (distance == 0.0) {
+      CHECK(objects.size() == 3);
+      CHECK(estimates[0].size() == 3);
+    } else {
+      REQUIRE(objects.size() == 2);
+      CHECK(estimates[0].size() == 2);
+      // The survivor of the pair is the likelier one, and the distant PO is untouched.
+      CHECK((objects[0].mean().head<2>() - Eigen::Vector2d(5.6, 6.45)).norm() < 0.3);
+      CHECK((objects[1].mean().head<2>() - Eigen::Vector2d(9.5, 6.5)).norm() < 0.3);
+      CHECK(objects[1].label == 2);
+    }
+  }
+  CHECK_THAT(dabench::test::input_error_message([] { dabench::make_tbd_tracker("tbd-bp:merge_distance=-1"); }),
+             Catch::Contains("merge_distance"));
+}
