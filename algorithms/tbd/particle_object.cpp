@@ -79,4 +79,11 @@ void sample_prior(ParticleObject& object, const TbdPrior& prior, int count, Rand
   }
 }
 
+void belief_samples(const std::vector<ParticleObject>& objects, std::vector<TbdBeliefSample>& samples) {
+  samples.clear();
+  for (const ParticleObject& o : objects) {
+    for (int i = 0; i < o.size(); ++i) samples.push_back({o.label, o.existence, o.x[i], o.y[i], o.weight[i]});
+  }
+}
+
 }  // namespace dabench

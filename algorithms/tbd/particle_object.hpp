@@ -8,12 +8,14 @@
 //    has left the region ([C] of the notes).
 //  - resample(): systematic resampling to a given count (equal weights after).
 //  - sample_prior(): particles of a TbdPrior (a Gaussian, possibly singular).
+//  - belief_samples(): POs' particles as the tracker's belief samples (beliefs.csv).
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "harness/core/random_stream.hpp"
 #include "harness/tbd/problem.hpp"
+#include "harness/tbd/tracker.hpp"
 
 namespace dabench {
 
@@ -37,5 +39,8 @@ void resample(ParticleObject& object, int count, RandomStream& rng, ParticleObje
 
 // `count` equally weighted particles drawn from N(prior.mean, prior.covariance), r = prior.existence.
 void sample_prior(ParticleObject& object, const TbdPrior& prior, int count, RandomStream& rng);
+
+// `samples` (replaced) = every particle of every PO with its label, existence and weight.
+void belief_samples(const std::vector<ParticleObject>& objects, std::vector<TbdBeliefSample>& samples);
 
 }  // namespace dabench

@@ -175,12 +175,7 @@ void TbdBp::merge_duplicates() {
   legacy_.resize(kept);
 }
 
-void TbdBp::beliefs(std::vector<TbdBeliefSample>& samples) const {
-  samples.clear();
-  for (const ParticleObject& o : legacy_) {
-    for (int i = 0; i < o.size(); ++i) samples.push_back({o.label, o.existence, o.x[i], o.y[i], o.weight[i]});
-  }
-}
+void TbdBp::beliefs(std::vector<TbdBeliefSample>& samples) const { belief_samples(legacy_, samples); }
 
 DABENCH_REGISTER_TBD_TRACKER(TbdBp);
 

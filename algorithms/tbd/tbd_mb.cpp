@@ -166,12 +166,7 @@ void TbdMb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
   }
 }
 
-void TbdMb::beliefs(std::vector<TbdBeliefSample>& samples) const {
-  samples.clear();
-  for (const ParticleObject& o : legacy_) {
-    for (int i = 0; i < o.size(); ++i) samples.push_back({o.label, o.existence, o.x[i], o.y[i], o.weight[i]});
-  }
-}
+void TbdMb::beliefs(std::vector<TbdBeliefSample>& samples) const { belief_samples(legacy_, samples); }
 
 DABENCH_REGISTER_TBD_TRACKER(TbdMb);
 
