@@ -364,14 +364,17 @@ int command_run_options(int argc, char** argv, const std::string& command_line, 
 }
 
 // Under mpirun, MPI is initialised first (and finalised last); only rank 0 prints errors of
-// the experiment or the output folder, and an unexpected failure ends every rank of the job.
+// the options, the experiment or the output folder, and an unexpected failure ends every rank
+// of the job.
 int command_run(int argc, char** argv, const std::string& command_line, const std::string& resume_line) {
   const std::unique_ptr<MpiTransport> mpi = MpiTransport::open_if_launched();
   if (mpi == nullptr) return command_run_options(argc, argv, command_line, resume_line, nullptr);
   try {
     return command_run_options(argc, argv, command_line, resume_line, mpi.get());
   } catch (const InputError& error) {
-    if (mpi->rank() != 0) return 2;
+    // Rank 0 reports it and exits 2; a worker exiting non-zero first would make mpirun kill
+    // rank 0 before it prints.
+    if (mpi->rank() != 0) return 0;
     throw;
   } catch (const std::exception& error) {
     std::fprintf(stderr, "dabench: rank %d: internal error: %s\n", mpi->rank(), error.what());

@@ -111,9 +111,9 @@ std::string MpiTransport::host_name() const {
   return name;
 }
 
-std::optional<MpiTransport::Envelope> MpiTransport::probe(int source, int tag, bool wait) const {
+std::optional<MpiTransport::Envelope> MpiTransport::probe(int source, int tag) const {
   Envelope envelope;
-  const int found = functions_->probe(source, tag, wait ? 1 : 0, &envelope.source, &envelope.tag, &envelope.bytes);
+  const int found = functions_->probe(source, tag, /*wait=*/0, &envelope.source, &envelope.tag, &envelope.bytes);
   if (found < 0) throw std::runtime_error(fmt::format("MPI probe failed (error {})", -found));
   if (found == 0) return std::nullopt;
   return envelope;

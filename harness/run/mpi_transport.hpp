@@ -31,8 +31,9 @@ class MpiTransport {
     int tag = 0;
     long long bytes = 0;
   };
-  // The next message from `source` with `tag` (-1: any); with `wait`, blocks until there is one.
-  std::optional<Envelope> probe(int source, int tag, bool wait) const;
+  // A message from `source` with `tag` (-1: any) waiting to be received, if any (never blocks:
+  // MPI's blocking calls spin a core).
+  std::optional<Envelope> probe(int source, int tag) const;
   std::string receive(const Envelope& envelope) const;  // the message probe() found
   void send(int destination, int tag, std::string_view bytes) const;
   [[noreturn]] void abort(int code) const;  // ends every rank of the job

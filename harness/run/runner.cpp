@@ -140,6 +140,28 @@ bool progress_under_mpirun() {
   return isatty(STDOUT_FILENO) != 0;
 }
 
+// Waiting for an MPI message by polling with growing sleeps (20 µs doubling to 1 ms): a
+// blocking MPI probe or receive spins a core, which the computing threads need.
+class IdleWait {
+ public:
+  void wait() {
+    std::this_thread::sleep_for(sleep_);
+    sleep_ = std::min(sleep_ * 2, std::chrono::microseconds(1000));
+  }
+
+ private:
+  std::chrono::microseconds sleep_{20};
+};
+
+// The next message from `source` with `tag`, waited for by polling.
+std::string receive_polling(const MpiTransport& mpi, int source, int tag) {
+  IdleWait idle;
+  while (true) {
+    if (const auto envelope = mpi.probe(source, tag)) return mpi.receive(*envelope);
+    idle.wait();
+  }
+}
+
 // Builds the execution of the plan's kind and calls body(execution).
 template <class Body>
 double with_execution(const RunPlan& plan, Body&& body) {
@@ -203,7 +225,7 @@ double run_local_blocks(const Execution& execution, const RunPlan& plan, const B
 // A worker rank's threads: each asks rank 0 for blocks (two requests in flight, so the answer
 // to the next is there when it finishes a block), runs them and sends their rows back with
 // its next request, until rank 0 answers kNoBlock (then every later answer is kNoBlock too).
-// Threads call MPI one at a time (MPI_THREAD_SERIALIZED).
+// Threads call MPI one at a time (MPI_THREAD_SERIALIZED) and wait for answers by polling.
 template <class Execution>
 void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLayout& layout, const MpiTransport& mpi) {
 #pragma omp parallel num_threads(plan.threads)
@@ -222,8 +244,14 @@ void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLa
     int in_flight = 2;
     while (in_flight > 0) {
       std::string answer;
+      IdleWait idle;
+      for (bool received = false; !received; idle.wait()) {
 #pragma omp critical(dabench_mpi)
-      answer = mpi.receive(*mpi.probe(0, tag, true));
+        if (const auto envelope = mpi.probe(0, tag)) {
+          answer = mpi.receive(*envelope);
+          received = true;
+        }
+      }
       --in_flight;
       const long long block = decode_block(answer);
       if (block == kNoBlock) continue;
@@ -244,25 +272,21 @@ void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLa
 
 // Rank 0's main thread while its own threads run blocks (until local_done): answers the other
 // ranks' requests for blocks from `queue`, hands their rows to the writer and draws the
-// progress line for the whole job. Polls (sleeping when idle) rather than blocking in MPI,
-// which would spin a core. Returns the remote threads' busy seconds.
+// progress line for the whole job. Returns the remote threads' busy seconds.
 double coordinate(const MpiTransport& mpi, long long remote_threads, BlockQueue& queue, const BlockLayout& layout,
                   OrderedWriter& writer, std::atomic<long long>& items_finished, ProgressLine& progress,
                   const std::atomic<bool>& local_done) {
-  constexpr auto kShortestIdle = std::chrono::microseconds(20);
-  constexpr auto kLongestIdle = std::chrono::microseconds(1000);
   std::map<std::pair<int, int>, double> busy_seconds;  // by (rank, thread)
   long long stops_to_send = 2 * remote_threads;       // every remote thread stops after two kNoBlock
-  auto idle = kShortestIdle;
+  IdleWait idle;
   while (stops_to_send > 0 || !local_done.load()) {
     progress.update(items_finished.load());
-    const auto envelope = mpi.probe(-1, -1, false);
+    const auto envelope = mpi.probe(-1, -1);
     if (!envelope) {
-      std::this_thread::sleep_for(idle);
-      idle = std::min(idle * 2, kLongestIdle);
+      idle.wait();
       continue;
     }
-    idle = kShortestIdle;
+    idle = IdleWait{};
     BlockResult result = decode_block_result(mpi.receive(*envelope));
     if (result.interrupted) g_interrupted = 1;  // one rank's Ctrl-C stops the job
     busy_seconds[{envelope->source, envelope->tag}] = result.busy_seconds;
@@ -282,7 +306,7 @@ double coordinate(const MpiTransport& mpi, long long remote_threads, BlockQueue&
 // Rank 0: every other rank's Hello (in rank order), the reasons it cannot run ("" if none).
 std::vector<Hello> receive_hellos(const MpiTransport& mpi) {
   std::vector<Hello> hellos;
-  for (int rank = 1; rank < mpi.size(); ++rank) hellos.push_back(decode_hello(mpi.receive(*mpi.probe(rank, kHelloTag, true))));
+  for (int rank = 1; rank < mpi.size(); ++rank) hellos.push_back(decode_hello(receive_polling(mpi, rank, kHelloTag)));
   return hellos;
 }
 
@@ -301,7 +325,7 @@ RunOutcome run_worker_rank(const RunOptions& options, const MpiTransport& mpi) {
   }
   mpi.send(0, kHelloTag, encode(hello));
   if (!hello.error.empty()) throw InputError(hello.error);
-  const Start start = decode_start(mpi.receive(*mpi.probe(0, kStartTag, true)));
+  const Start start = decode_start(receive_polling(mpi, 0, kStartTag));
   if (!start.error.empty()) throw InputError(start.error);
 
   const InterruptHandlers handlers;
