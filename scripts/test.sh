@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The whole test suite: install dependencies, build, run every Catch2 test through ctest, then
-# run Open MPI jobs on loopback (scripts/test_mpi.sh), install into a temporary prefix and build and run examples/outside-project against it.
+# The whole test suite: install dependencies, build, run every Catch2 test through ctest, run
+# Open MPI jobs on loopback (scripts/test_mpi.sh), then install into a temporary prefix and
+# build and run examples/outside-project against it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
