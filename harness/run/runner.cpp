@@ -244,13 +244,16 @@ void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLa
     int in_flight = 2;
     while (in_flight > 0) {
       std::string answer;
+      bool received = false;
       IdleWait idle;
-      for (bool received = false; !received; idle.wait()) {
+      while (true) {
 #pragma omp critical(dabench_mpi)
         if (const auto envelope = mpi.probe(0, tag)) {
           answer = mpi.receive(*envelope);
           received = true;
         }
+        if (received) break;
+        idle.wait();
       }
       --in_flight;
       const long long block = decode_block(answer);
