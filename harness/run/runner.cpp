@@ -7,6 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -230,7 +231,14 @@ template <class Execution>
 void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLayout& layout, const MpiTransport& mpi) {
 #pragma omp parallel num_threads(plan.threads)
   {
-    if (omp_get_num_threads() != plan.threads) mpi.abort(1);  // rank 0 counts on plan.threads requesters
+    if (omp_get_num_threads() != plan.threads) {  // rank 0 counts on plan.threads requesters
+#pragma omp critical(dabench_mpi)
+      {
+        std::fprintf(stderr, "dabench: rank %d: OpenMP gave %d threads, not %d (OMP_THREAD_LIMIT?)\n", mpi.rank(),
+                     omp_get_num_threads(), plan.threads);
+        mpi.abort(1);
+      }
+    }
     auto worker = execution.make_worker();
     const std::size_t files = worker.texts.size();
     const int tag = omp_get_thread_num();
