@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -22,6 +23,7 @@
 #include "harness/core/params.hpp"
 #include "harness/core/repeat_timing.hpp"
 #include "harness/multi_scan/registry.hpp"
+#include "harness/run/mpi_transport.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/run/shard_merge.hpp"
 #include "harness/single_scan/registry.hpp"
@@ -307,7 +309,8 @@ Shard parse_shard(const std::string& text) {
   return Shard{static_cast<int>(index), static_cast<int>(count)};
 }
 
-int command_run(int argc, char** argv, const std::string& command_line, const std::string& resume_line) {
+int command_run_options(int argc, char** argv, const std::string& command_line, std::string resume_line,
+                        const MpiTransport* mpi) {
   po::options_description options("run options");
   RunOptions run;
   run.command_line = command_line;
@@ -344,7 +347,10 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
   if (values.count("out")) run.output = out;
   if (values.count("shard")) run.shard = parse_shard(shard);
 
+  run.transport = mpi;
   const RunOutcome outcome = run_experiment(run);
+  if (outcome.worker_rank) return 0;  // rank 0 reports
+  if (mpi != nullptr) resume_line = fmt::format("mpirun -np {} {}", mpi->size(), resume_line);
   if (outcome.interrupted) {
     std::fprintf(stderr, "dabench: interrupted after %lld of %lld trials; finish with: %s\n",
                  outcome.items_written, outcome.items_total, resume_line.c_str());
@@ -355,6 +361,25 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
   std::fprintf(stderr, "dabench: %lld trials done; results in %s/ (%s, summary.csv, meta.json)\n",
                outcome.items_total, outcome.output.c_str(), files.c_str());
   return 0;
+}
+
+// Under mpirun, MPI is initialised first (and finalised last); only rank 0 prints errors of
+// the options, the experiment or the output folder, and an unexpected failure ends every rank
+// of the job.
+int command_run(int argc, char** argv, const std::string& command_line, const std::string& resume_line) {
+  const std::unique_ptr<MpiTransport> mpi = MpiTransport::open_if_launched();
+  if (mpi == nullptr) return command_run_options(argc, argv, command_line, resume_line, nullptr);
+  try {
+    return command_run_options(argc, argv, command_line, resume_line, mpi.get());
+  } catch (const InputError& error) {
+    // Rank 0 reports it and exits 2; a worker exiting non-zero first would make mpirun kill
+    // rank 0 before it prints.
+    if (mpi->rank() != 0) return 0;
+    throw;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "dabench: rank %d: internal error: %s\n", mpi->rank(), error.what());
+    mpi->abort(1);
+  }
 }
 
 int command_merge(int argc, char** argv, const std::string& command_line) {

@@ -59,7 +59,15 @@ std::string run_meta_json(const RunPlan& plan, const RunRecord& record) {
       .add("build_type", build.build_type)
       .add("threads", static_cast<long long>(plan.threads))
       .add("processes", record.processes)
-      .add("host", record.hosts)
+      .add("host", record.hosts);
+  if (!record.rank_hosts.empty()) {
+    std::string threads = "[";
+    for (std::size_t k = 0; k < record.rank_threads.size(); ++k) threads += (k ? ", " : "") + std::to_string(record.rank_threads[k]);
+    meta.add("ranks", static_cast<long long>(record.rank_hosts.size()))
+        .add_raw("rank_threads", threads + "]")
+        .add_raw("rank_hosts", json_list(record.rank_hosts.begin(), record.rank_hosts.end()));
+  }
+  meta
       .add("resumed", record.resumed)
       .add("start_time", record.start_time)
       .add("end_time", record.end_time)

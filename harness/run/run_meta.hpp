@@ -4,6 +4,7 @@
 // end; `dabench merge` writes the merged run's from its shards' records.
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "harness/run/run_plan.hpp"
 
@@ -22,6 +23,9 @@ struct RunRecord {
   bool resumed = false;
   long long processes = 1;       // merged runs: the number of shards
   std::string hosts;             // host name; merged runs: the shards' distinct hosts, comma-separated
+  // MPI runs (`processes` ranks): each rank's host and threads, by rank; empty otherwise.
+  std::vector<std::string> rank_hosts;
+  std::vector<int> rank_threads;
 };
 
 std::string run_meta_json(const RunPlan& plan, const RunRecord& record);

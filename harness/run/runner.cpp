@@ -1,13 +1,21 @@
 #include "harness/run/runner.hpp"
 
 #include <omp.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <numeric>
+#include <optional>
+#include <set>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -19,7 +27,9 @@
 #include "harness/core/row_fields.hpp"
 #include "harness/core/summary.hpp"
 #include "harness/multi_scan/registry.hpp"
+#include "harness/run/mpi_transport.hpp"
 #include "harness/run/multi_scan_execution.hpp"
+#include "harness/run/rank_messages.hpp"
 #include "harness/run/run_folder.hpp"
 #include "harness/run/run_meta.hpp"
 #include "harness/run/run_plan.hpp"
@@ -74,58 +84,343 @@ using Clock = std::chrono::steady_clock;
 volatile std::sig_atomic_t g_interrupted = 0;
 extern "C" void on_interrupt(int) { g_interrupted = 1; }
 
-// Runs blocks first_block..total_blocks−1 of this process's items (RunPlan::shard_items, in
-// blocks of kItemsPerBlock) on OpenMP threads (each thread with its own worker) and hands each
-// block's texts to the ordered writer; returns the threads' busy seconds.
+// SIGINT/SIGTERM set g_interrupted while this lives (mpirun passes Ctrl-C on as SIGTERM).
+class InterruptHandlers {
+ public:
+  InterruptHandlers() {
+    g_interrupted = 0;
+    previous_int_ = std::signal(SIGINT, on_interrupt);
+    previous_term_ = std::signal(SIGTERM, on_interrupt);
+  }
+  ~InterruptHandlers() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+  InterruptHandlers(const InterruptHandlers&) = delete;
+  InterruptHandlers& operator=(const InterruptHandlers&) = delete;
+
+ private:
+  void (*previous_int_)(int) = nullptr;
+  void (*previous_term_)(int) = nullptr;
+};
+
+// This process's items (RunPlan::shard_items) in blocks of kItemsPerBlock; blocks before
+// first_block are written, and so are the first skip_in_first items of first_block (--resume
+// points are whole items; block boundaries stay item multiples).
+struct BlockLayout {
+  long long first_block = 0;
+  long long skip_in_first = 0;
+  long long total_items = 0;
+
+  long long total_blocks() const { return (total_items + kItemsPerBlock - 1) / kItemsPerBlock; }
+  long long begin(long long block) const { return block * kItemsPerBlock + (block == first_block ? skip_in_first : 0); }
+  long long end(long long block) const { return std::min(total_items, (block + 1) * kItemsPerBlock); }
+};
+
+// Hands out the blocks still to run, in order, to whichever thread (or rank) asks first;
+// none once interrupted.
+class BlockQueue {
+ public:
+  BlockQueue(long long first_block, long long total_blocks) : next_(first_block), total_(total_blocks) {}
+  std::optional<long long> take() {
+    if (g_interrupted) return std::nullopt;
+    const long long block = next_.fetch_add(1);
+    return block < total_ ? std::optional<long long>(block) : std::nullopt;
+  }
+
+ private:
+  std::atomic<long long> next_;
+  long long total_;
+};
+
+// Whether rank 0 of an mpirun job draws the progress line: Open MPI hands the ranks a pipe for
+// stderr (never a terminal) and a pseudo-terminal for stdout, so stdout stands in for it;
+// DABENCH_PROGRESS=0 or 1 decides instead (e.g. 0 for a batch job's log).
+bool progress_under_mpirun() {
+  if (const char* choice = std::getenv("DABENCH_PROGRESS")) return std::string(choice) != "0";
+  return isatty(STDOUT_FILENO) != 0;
+}
+
+// Waiting for an MPI message by polling with growing sleeps (20 µs doubling to 1 ms): a
+// blocking MPI probe or receive spins a core, which the computing threads need.
+class IdleWait {
+ public:
+  void wait() {
+    std::this_thread::sleep_for(sleep_);
+    sleep_ = std::min(sleep_ * 2, std::chrono::microseconds(1000));
+  }
+
+ private:
+  std::chrono::microseconds sleep_{20};
+};
+
+// The next message from `source` with `tag`, waited for by polling.
+std::string receive_polling(const MpiTransport& mpi, int source, int tag) {
+  IdleWait idle;
+  while (true) {
+    if (const auto envelope = mpi.probe(source, tag)) return mpi.receive(*envelope);
+    idle.wait();
+  }
+}
+
+// Builds the execution of the plan's kind and calls body(execution).
+template <class Body>
+double with_execution(const RunPlan& plan, Body&& body) {
+  if (plan.kind == RunKind::tracking) {
+    std::vector<std::unique_ptr<TrackingScenario>> scenarios;
+    const auto* entry = tracking_scenario_registry().find(plan.experiment.scenario);
+    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
+    return body(TrackingExecution(plan, std::move(scenarios), TrackingMetricsOptions{}));
+  }
+  if (plan.kind == RunKind::tbd) {
+    std::vector<std::unique_ptr<TbdScenario>> scenarios;
+    const auto* entry = tbd_scenario_registry().find(plan.experiment.scenario);
+    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
+    return body(TbdExecution(plan, std::move(scenarios),
+                             make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
+  }
+  if (plan.kind == RunKind::multi_scan) {
+    std::vector<std::unique_ptr<MultiScanScenario>> scenarios;
+    const auto* entry = multi_scan_scenario_registry().find(plan.experiment.scenario);
+    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
+    return body(MultiScanExecution(plan, std::move(scenarios)));
+  }
+  std::vector<std::unique_ptr<SingleScanScenario>> scenarios;
+  const auto* entry = scenario_registry().find(plan.experiment.scenario);
+  for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
+  return body(SingleScanExecution(plan, std::move(scenarios)));
+}
+
+// Runs one block's items into worker.texts (cleared first).
+template <class Execution, class Worker>
+void run_block(const Execution& execution, Worker& worker, const RunPlan& plan, const BlockLayout& layout, long long block) {
+  for (std::string& text : worker.texts) text.clear();
+  for (long long item = layout.begin(block); item < layout.end(block); ++item) execution.run_item(worker, plan.global_item(item));
+}
+
+// Runs blocks from `queue` on this process's OpenMP threads (each with its own worker) and
+// hands each block's texts to the ordered writer; draws `progress` unless null. Returns the
+// threads' busy seconds.
 template <class Execution>
-double run_blocks(const Execution& execution, const RunPlan& plan, OrderedWriter& writer, ProgressLine& progress,
-                  long long first_block, long long skip_in_first, std::atomic<long long>& items_finished) {
-  const long long total_items = plan.shard_items();
-  const int threads = plan.threads;
-  const long long total_blocks = (total_items + kItemsPerBlock - 1) / kItemsPerBlock;
+double run_local_blocks(const Execution& execution, const RunPlan& plan, const BlockLayout& layout, BlockQueue& queue,
+                        OrderedWriter& writer, std::atomic<long long>& items_finished, ProgressLine* progress) {
   double busy_seconds = 0.0;
-#pragma omp parallel num_threads(threads) reduction(+ : busy_seconds)
+#pragma omp parallel num_threads(plan.threads) reduction(+ : busy_seconds)
   {
     auto worker = execution.make_worker();
     const std::size_t files = worker.texts.size();
-#pragma omp for schedule(dynamic, 1)
-    for (long long block = first_block; block < total_blocks; ++block) {
-      if (g_interrupted) continue;
-      const long long begin = block * kItemsPerBlock + (block == first_block ? skip_in_first : 0);
-      const long long end = std::min(total_items, (block + 1) * kItemsPerBlock);
-      for (std::string& text : worker.texts) text.clear();
-      for (long long item = begin; item < end; ++item) execution.run_item(worker, plan.global_item(item));
-      const long long blocks_written = writer.submit(block, std::move(worker.texts));
+    while (const auto block = queue.take()) {
+      run_block(execution, worker, plan, layout, *block);
+      const long long blocks_written = writer.submit(*block, std::move(worker.texts));
       worker.texts = std::vector<std::string>(files);
-      items_finished += end - begin;
-      if (omp_get_thread_num() == 0 || blocks_written == total_blocks) progress.update(items_finished.load());
+      items_finished += layout.end(*block) - layout.begin(*block);
+      if (progress != nullptr && (omp_get_thread_num() == 0 || blocks_written == layout.total_blocks())) {
+        progress->update(items_finished.load());
+      }
     }
     busy_seconds += worker.busy_seconds;
   }
   return busy_seconds;
 }
 
+// A worker rank's threads: each asks rank 0 for blocks (two requests in flight, so the answer
+// to the next is there when it finishes a block), runs them and sends their rows back with
+// its next request, until rank 0 answers kNoBlock (then every later answer is kNoBlock too).
+// Threads call MPI one at a time (MPI_THREAD_SERIALIZED) and wait for answers by polling.
+template <class Execution>
+void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLayout& layout, const MpiTransport& mpi) {
+#pragma omp parallel num_threads(plan.threads)
+  {
+    if (omp_get_num_threads() != plan.threads) {  // rank 0 counts on plan.threads requesters
+#pragma omp critical(dabench_mpi)
+      {
+        std::fprintf(stderr, "dabench: rank %d: OpenMP gave %d threads, not %d (OMP_THREAD_LIMIT?)\n", mpi.rank(),
+                     omp_get_num_threads(), plan.threads);
+        mpi.abort(1);
+      }
+    }
+    auto worker = execution.make_worker();
+    const std::size_t files = worker.texts.size();
+    const int tag = omp_get_thread_num();
+    const auto send = [&](const BlockResult& result) {
+      const std::string message = encode(result);
+#pragma omp critical(dabench_mpi)
+      mpi.send(0, tag, message);
+    };
+    send(BlockResult{});
+    send(BlockResult{});
+    int in_flight = 2;
+    while (in_flight > 0) {
+      std::string answer;
+      bool received = false;
+      IdleWait idle;
+      while (true) {
+#pragma omp critical(dabench_mpi)
+        if (const auto envelope = mpi.probe(0, tag)) {
+          answer = mpi.receive(*envelope);
+          received = true;
+        }
+        if (received) break;
+        idle.wait();
+      }
+      --in_flight;
+      const long long block = decode_block(answer);
+      if (block == kNoBlock) continue;
+      BlockResult result;
+      result.interrupted = g_interrupted != 0;
+      if (!result.interrupted) {  // else the block is left to --resume
+        run_block(execution, worker, plan, layout, block);
+        result.block = block;
+        result.texts = std::move(worker.texts);
+        worker.texts = std::vector<std::string>(files);
+      }
+      result.busy_seconds = worker.busy_seconds;
+      send(result);
+      ++in_flight;
+    }
+  }
+}
+
+// Rank 0's main thread while its own threads run blocks (until local_done): answers the other
+// ranks' requests for blocks from `queue`, hands their rows to the writer and draws the
+// progress line for the whole job. Returns the remote threads' busy seconds.
+double coordinate(const MpiTransport& mpi, long long remote_threads, BlockQueue& queue, const BlockLayout& layout,
+                  OrderedWriter& writer, std::atomic<long long>& items_finished, ProgressLine& progress,
+                  const std::atomic<bool>& local_done) {
+  std::map<std::pair<int, int>, double> busy_seconds;  // by (rank, thread)
+  long long stops_to_send = 2 * remote_threads;       // every remote thread stops after two kNoBlock
+  IdleWait idle;
+  while (stops_to_send > 0 || !local_done.load()) {
+    progress.update(items_finished.load());
+    const auto envelope = mpi.probe(-1, -1);
+    if (!envelope) {
+      idle.wait();
+      continue;
+    }
+    idle = IdleWait{};
+    BlockResult result = decode_block_result(mpi.receive(*envelope));
+    if (result.interrupted) g_interrupted = 1;  // one rank's Ctrl-C stops the job
+    busy_seconds[{envelope->source, envelope->tag}] = result.busy_seconds;
+    if (result.block != kNoBlock) {
+      items_finished += layout.end(result.block) - layout.begin(result.block);
+      writer.submit(result.block, std::move(result.texts));
+    }
+    const auto next = queue.take();
+    if (!next) --stops_to_send;
+    mpi.send(envelope->source, envelope->tag, encode_block(next.value_or(kNoBlock)));
+  }
+  double total = 0.0;
+  for (const auto& [thread, seconds] : busy_seconds) total += seconds;
+  return total;
+}
+
+// Rank 0: every other rank's Hello (in rank order), the reasons it cannot run ("" if none).
+std::vector<Hello> receive_hellos(const MpiTransport& mpi) {
+  std::vector<Hello> hellos;
+  for (int rank = 1; rank < mpi.size(); ++rank) hellos.push_back(decode_hello(receive_polling(mpi, rank, kHelloTag)));
+  return hellos;
+}
+
+// A rank other than 0: reads the experiment, greets rank 0, waits for the start, then runs the
+// blocks rank 0 hands it. Its InputErrors are reported by rank 0.
+RunOutcome run_worker_rank(const RunOptions& options, const MpiTransport& mpi) {
+  Hello hello;
+  hello.host = host_name();
+  std::optional<RunPlan> plan;
+  try {
+    plan.emplace(make_run_plan(options));
+    hello.fingerprint = plan->fingerprint();
+    hello.threads = plan->threads;
+  } catch (const InputError& error) {
+    hello.error = error.what();
+  }
+  mpi.send(0, kHelloTag, encode(hello));
+  if (!hello.error.empty()) throw InputError(hello.error);
+  const Start start = decode_start(receive_polling(mpi, 0, kStartTag));
+  if (!start.error.empty()) throw InputError(start.error);
+
+  const InterruptHandlers handlers;
+  const BlockLayout layout{start.first_block, start.skip_in_first, plan->shard_items()};
+  with_execution(*plan, [&](const auto& execution) {
+    serve_blocks(execution, *plan, layout, mpi);
+    return 0.0;
+  });
+  RunOutcome outcome;
+  outcome.items_total = layout.total_items;
+  outcome.output = plan->output;
+  outcome.worker_rank = true;
+  return outcome;
+}
+
 }  // namespace
 
 RunOutcome run_experiment(const RunOptions& options) {
-  const RunPlan plan = make_run_plan(options);
+  const MpiTransport* mpi = options.transport;
+  if (mpi != nullptr && mpi->rank() != 0) return run_worker_rank(options, *mpi);
+
+  // Under MPI, an error of rank 0 or of any rank reading the experiment stops every rank.
+  std::vector<Hello> hellos;
+  const auto stop_workers = [&](const std::string& error) {
+    for (std::size_t k = 0; k < hellos.size(); ++k) {
+      if (hellos[k].error.empty()) mpi->send(static_cast<int>(k) + 1, kStartTag, encode(Start{error}));
+    }
+    return InputError(error);
+  };
+  std::optional<RunPlan> checked_plan;
+  std::string error;
+  try {
+    checked_plan.emplace(make_run_plan(options));
+  } catch (const InputError& plan_error) {
+    if (mpi == nullptr) throw;
+    error = plan_error.what();
+  }
+  if (mpi != nullptr) hellos = receive_hellos(*mpi);
+  for (std::size_t k = 0; k < hellos.size() && error.empty(); ++k) {
+    const Hello& hello = hellos[k];
+    if (!hello.error.empty()) {
+      error = fmt::format("rank {} ({}): {}", k + 1, hello.host, hello.error);
+    } else if (hello.fingerprint != checked_plan->fingerprint()) {
+      error = fmt::format("rank {} ({}) read another experiment, seed or trials than rank 0 (different files on its host?)",
+                          k + 1, hello.host);
+    }
+  }
+  if (!error.empty()) throw stop_workers(error);
+  const RunPlan& plan = *checked_plan;
+
   RunRecord record;
   record.command_line = options.command_line;
   record.status = "running";
   record.start_time = utc_now();
   record.hosts = host_name();
-  OpenedTrials opened = open_trials_file(plan, options.resume, options.force, run_meta_json(plan, record));
-  if (!opened.resumed && !plan.experiment.record_iterations) {
-    // A fresh run without `iterations = true` leaves no iterations.csv of an earlier run.
-    std::error_code ignored;
-    std::filesystem::remove(std::filesystem::path(plan.output) / "iterations.csv", ignored);
+  if (mpi != nullptr) {
+    record.rank_hosts.push_back(record.hosts);
+    record.rank_threads.push_back(plan.threads);
+    std::set<std::string> seen_hosts = {record.hosts};
+    for (const Hello& hello : hellos) {
+      record.rank_hosts.push_back(hello.host);
+      record.rank_threads.push_back(hello.threads);
+      if (seen_hosts.insert(hello.host).second) record.hosts += "," + hello.host;
+    }
+    record.processes = mpi->size();
   }
-  if (!opened.resumed && !plan.experiment.record_beliefs) {
-    std::error_code ignored;
-    std::filesystem::remove(std::filesystem::path(plan.output) / "beliefs.csv", ignored);
-  }
+  OpenedTrials opened;
   std::vector<std::FILE*> files;
-  for (const ItemFile& file : plan.item_files()) files.push_back(open_item_file(plan, file, opened.items_done, opened.resumed));
+  try {
+    opened = open_trials_file(plan, options.resume, options.force, run_meta_json(plan, record));
+    if (!opened.resumed && !plan.experiment.record_iterations) {
+      // A fresh run without `iterations = true` leaves no iterations.csv of an earlier run.
+      std::error_code ignored;
+      std::filesystem::remove(std::filesystem::path(plan.output) / "iterations.csv", ignored);
+    }
+    if (!opened.resumed && !plan.experiment.record_beliefs) {
+      std::error_code ignored;
+      std::filesystem::remove(std::filesystem::path(plan.output) / "beliefs.csv", ignored);
+    }
+    for (const ItemFile& file : plan.item_files()) files.push_back(open_item_file(plan, file, opened.items_done, opened.resumed));
+  } catch (const InputError& open_error) {
+    if (mpi == nullptr) throw;
+    throw stop_workers(open_error.what());
+  }
   files.push_back(opened.file);  // trials.csv last: the item files never hold fewer items
   record.items_done = opened.items_done;
   record.resumed = opened.resumed;
@@ -133,45 +428,38 @@ RunOutcome run_experiment(const RunOptions& options) {
 
   const long long total_items = plan.shard_items();
   const long long first_block = opened.items_done / kItemsPerBlock;
-  // Resume points are whole items; realign so block boundaries stay item multiples.
-  const long long skip_in_first = opened.items_done - first_block * kItemsPerBlock;
+  const BlockLayout layout{first_block, opened.items_done - first_block * kItemsPerBlock, total_items};
+  for (std::size_t k = 0; k < hellos.size(); ++k) {
+    mpi->send(static_cast<int>(k) + 1, kStartTag, encode(Start{"", layout.first_block, layout.skip_in_first}));
+  }
+  BlockQueue queue(first_block, layout.total_blocks());
   OrderedWriter writer(files, first_block);
-  ProgressLine progress(total_items, opened.items_done, stderr_is_terminal());
+  ProgressLine progress(total_items, opened.items_done, mpi != nullptr ? progress_under_mpirun() : stderr_is_terminal());
 
-  g_interrupted = 0;
-  auto previous_int = std::signal(SIGINT, on_interrupt);
-  auto previous_term = std::signal(SIGTERM, on_interrupt);
+  const InterruptHandlers handlers;
   const auto wall_start = Clock::now();
   std::atomic<long long> items_finished{opened.items_done};
-  double busy_seconds = 0.0;
-  if (plan.kind == RunKind::tracking) {
-    std::vector<std::unique_ptr<TrackingScenario>> scenarios;
-    const auto* entry = tracking_scenario_registry().find(plan.experiment.scenario);
-    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-    const TrackingExecution execution(plan, std::move(scenarios), TrackingMetricsOptions{});
-    busy_seconds = run_blocks(execution, plan, writer, progress, first_block, skip_in_first, items_finished);
-  } else if (plan.kind == RunKind::tbd) {
-    std::vector<std::unique_ptr<TbdScenario>> scenarios;
-    const auto* entry = tbd_scenario_registry().find(plan.experiment.scenario);
-    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-    const TbdExecution execution(plan, std::move(scenarios),
-                                 make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]"));
-    busy_seconds = run_blocks(execution, plan, writer, progress, first_block, skip_in_first, items_finished);
-  } else if (plan.kind == RunKind::multi_scan) {
-    std::vector<std::unique_ptr<MultiScanScenario>> scenarios;
-    const auto* entry = multi_scan_scenario_registry().find(plan.experiment.scenario);
-    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-    const MultiScanExecution execution(plan, std::move(scenarios));
-    busy_seconds = run_blocks(execution, plan, writer, progress, first_block, skip_in_first, items_finished);
-  } else {
-    std::vector<std::unique_ptr<SingleScanScenario>> scenarios;
-    const auto* entry = scenario_registry().find(plan.experiment.scenario);
-    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-    const SingleScanExecution execution(plan, std::move(scenarios));
-    busy_seconds = run_blocks(execution, plan, writer, progress, first_block, skip_in_first, items_finished);
-  }
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
+  const double busy_seconds = with_execution(plan, [&](const auto& execution) {
+    if (mpi == nullptr) return run_local_blocks(execution, plan, layout, queue, writer, items_finished, &progress);
+    std::atomic<bool> local_done{false};
+    double local_busy = 0.0;
+    std::thread local([&] {
+      local_busy = run_local_blocks(execution, plan, layout, queue, writer, items_finished, nullptr);
+      local_done = true;
+    });
+    long long remote_threads = 0;
+    for (const Hello& hello : hellos) remote_threads += hello.threads;
+    double remote_busy = 0.0;
+    try {
+      remote_busy = coordinate(*mpi, remote_threads, queue, layout, writer, items_finished, progress, local_done);
+    } catch (...) {
+      g_interrupted = 1;
+      local.join();
+      throw;
+    }
+    local.join();
+    return local_busy + remote_busy;
+  });
   progress.finish();
   const double wall_seconds = std::chrono::duration<double>(Clock::now() - wall_start).count();
   for (std::FILE* file : files) std::fclose(file);
@@ -188,7 +476,9 @@ RunOutcome run_experiment(const RunOptions& options) {
   record.items_done = outcome.items_written;
   record.end_time = utc_now();
   record.wall_seconds = wall_seconds;
-  record.work_fraction = wall_seconds > 0.0 ? busy_seconds / (wall_seconds * plan.threads) : std::nan("");
+  const double threads = std::accumulate(record.rank_threads.begin(), record.rank_threads.end(), 0.0);
+  record.work_fraction =
+      wall_seconds > 0.0 ? busy_seconds / (wall_seconds * (mpi != nullptr ? threads : plan.threads)) : std::nan("");
   write_file_atomically(meta_path(plan), run_meta_json(plan, record));
   return outcome;
 }

@@ -9,12 +9,19 @@
 // aside) for any thread count or resume history. Everything that can be wrong with the
 // experiment (scenario, parameters of every point, algorithm SPECs, output folder) is checked
 // before the first trial runs.
+//
+// Under mpirun (RunOptions::transport), every rank reads the experiment; rank 0 opens the
+// output folder, hands blocks of items to its own threads and, on request, to the other ranks'
+// threads, and writes every rank's rows through the same ordered writer, so the files are
+// those of a single process. A worker rank writes nothing.
 #include <cstdint>
 #include <optional>
 #include <vector>
 #include <string>
 
 namespace dabench {
+
+class MpiTransport;
 
 // `--shard K/N`: this process runs shard K (1-based) of N (harness/run/run_plan.hpp says which
 // items) into its own folder; `dabench merge` joins the N folders.
@@ -33,6 +40,7 @@ struct RunOptions {
   bool force = false;                   // discard the run in the output folder
   std::optional<Shard> shard;           // run one shard (default output: the file's + "-shard-K-of-N")
   std::string command_line;             // recorded in meta.json
+  const MpiTransport* transport = nullptr;  // under mpirun: this rank's link to the others
 };
 
 struct RunOutcome {
@@ -41,6 +49,7 @@ struct RunOutcome {
   bool interrupted = false;
   std::vector<std::string> item_files;  // written beside trials.csv (e.g. targets.csv)
   std::string output;
+  bool worker_rank = false;             // an MPI rank other than 0: rank 0 reports the run
 };
 
 // Throws InputError for anything wrong before the run starts.
