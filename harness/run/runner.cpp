@@ -148,7 +148,8 @@ RunOutcome run_experiment(const RunOptions& options) {
     std::vector<std::unique_ptr<TrackingScenario>> scenarios;
     const auto* entry = tracking_scenario_registry().find(plan.experiment.scenario);
     for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-    const TrackingExecution execution(plan, std::move(scenarios), TrackingMetricsOptions{});
+    const TrackingExecution execution(plan, std::move(scenarios),
+                                      make_options<TrackingMetricsOptions>(plan.experiment.metric_settings, "[metrics]"));
     busy_seconds = run_blocks(execution, plan, writer, progress, first_block, skip_in_first, items_finished);
   } else if (plan.kind == RunKind::tbd) {
     std::vector<std::unique_ptr<TbdScenario>> scenarios;
