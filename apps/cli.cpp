@@ -29,6 +29,7 @@
 #include "harness/single_scan/registry.hpp"
 #include "harness/single_scan/weights_csv.hpp"
 #include "harness/tbd/registry.hpp"
+#include "harness/tracking/metrics.hpp"
 #include "harness/tracking/registry.hpp"
 
 namespace dabench {
@@ -164,6 +165,12 @@ int command_list(int argc, char** argv) {
   describe(multi_scan_scenario_registry());
   out += "\nTracking scenarios (whole runs of K scans, for trackers):\n";
   describe(tracking_scenario_registry());
+  out += "  experiment [metrics] of tracking scenarios (harness/tracking/metrics.hpp):\n";
+  TrackingMetricsOptions tracking_metrics;
+  ParamList tracking_metric_params;
+  tracking_metrics.bind(tracking_metric_params);
+  for (const auto& param : tracking_metric_params.entries())
+    out += fmt::format("      {:<16} = {:<10} {}\n", param.key, ParamList::format(param), param.doc);
   out += "\nTrack-before-detect scenarios (K image frames of J data cells; experiment [metrics]: GOSPA c, p, alpha):\n";
   describe(tbd_scenario_registry());
   const fs::path folder = experiments_folder();

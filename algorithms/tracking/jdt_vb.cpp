@@ -26,6 +26,10 @@ void JdtVbOptions::bind(ParamList& p) {
   p.add("head_azimuth", head_azimuth, "track-head threshold on azimuth, rad, > 0");
   p.add("head_bearing_rate_sd", head_bearing_rate_sd, "s.d. of the bearing rate of a new track, rad/s, > 0");
   p.add("joint_fusion", joint_fusion, "Module 1: 0 = per-path smoothers fused by eq (32), 1 = one smoother on all paths");
+  p.add("alternative_heads", alternative_heads,
+        "1: a head for every equally good path reading of a new return group (not in the paper); 0: only the best");
+  p.add("literal", literal,
+        "1: the paper-literal set, overriding joint_fusion = 0 (eq 32), delete_on_mean = 1, alternative_heads = 0");
   p.add("lbp_tolerance", association.tolerance, "Module 3: stop LBP when no message changes more (log units)");
   p.add("lbp_iterations", association.max_iterations, "Module 3: LBP iteration cap");
 }
@@ -42,6 +46,16 @@ std::string JdtVbOptions::validate() const {
                          {"head_azimuth", head_azimuth}, {"head_bearing_rate_sd", head_bearing_rate_sd}})
     if (!(v > 0.0 && std::isfinite(v))) return fmt::format("{} = {} must be finite and > 0", name, v);
   return association.validate();
+}
+
+JdtVbOptions JdtVbOptions::resolved() const {
+  JdtVbOptions o = *this;
+  if (literal) {
+    o.joint_fusion = false;
+    o.delete_on_mean = true;
+    o.alternative_heads = false;
+  }
+  return o;
 }
 
 namespace jdt_vb_detail {
@@ -222,7 +236,7 @@ void Run::output(TrackSet& out) const {
 
 }  // namespace jdt_vb_detail
 
-JdtVbTracker::JdtVbTracker(const Options& options) : options_(options) {
+JdtVbTracker::JdtVbTracker(const Options& options) : options_(options.resolved()) {
   if (const std::string why = options_.validate(); !why.empty()) throw InputError("jdt-vb: " + why);
 }
 

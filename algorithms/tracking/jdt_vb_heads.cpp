@@ -188,10 +188,14 @@ std::vector<TrackHead> form_track_heads(const Eigen::MatrixXd& scan, const std::
         started = true;
         std::vector<char> members(group.size(), 0);
         for (std::size_t j = 0; j < group.size(); ++j) members[j] = best.path_of[j] >= 0;
-        std::vector<Hypothesis> kept;
-        for (Hypothesis& h : search.all_using(members))
-          if (distinct(h, kept, options.gate)) kept.push_back(std::move(h));
-        for (const Hypothesis& h : kept) heads.push_back(make_head(h, group, paths));
+        if (options.alternative_heads) {
+          std::vector<Hypothesis> kept;
+          for (Hypothesis& h : search.all_using(members))
+            if (distinct(h, kept, options.gate)) kept.push_back(std::move(h));
+          for (const Hypothesis& h : kept) heads.push_back(make_head(h, group, paths));
+        } else {
+          heads.push_back(make_head(best, group, paths));
+        }
         for (std::size_t j = 0; j < group.size(); ++j)
           if (members[j]) leaves[group[j]] = 1;
       }

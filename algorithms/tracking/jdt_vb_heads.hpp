@@ -16,9 +16,10 @@
 //    `gate`. The best is the consistent hypothesis with the most members, ties broken by the
 //    least mean distance (the paper's "minimum average Mahalanobis distance"). Its members can
 //    also fit other path assignments (two measurements received on one layer fit that layer
-//    pair and the other one, ~30 km apart on the ground): every consistent assignment of
-//    exactly those members whose state differs from the ones kept (beyond `gate`) starts a
-//    head too, and the later scans' association decides between them. The members leave the
+//    pair and the other one, ~30 km apart on the ground): with `alternative_heads` (the
+//    default; not in the paper) every consistent assignment of exactly those members whose
+//    state differs from the ones kept (beyond `gate`) starts a head too, and the later scans'
+//    association decides between them; without it only the best starts one. The members leave the
 //    pool; if the group has no consistent pair, only the seed leaves. Repeat until the pool
 //    is empty; a group may thus hold two targets' measurements (Table III's parallel targets
 //    1 and 2 are 50 km apart, inside ρ_r = 80 km) and give a head for each.
@@ -44,6 +45,7 @@ struct TrackHeadOptions {
   Vector threshold;        // ρ, per measurement component (n_y)
   Vector prior_precision;  // Λ₀ diagonal, per state component (n_x), > 0
   double gate = 9.0;       // consistency bound on each member's Mahalanobis distance
+  bool alternative_heads = true;  // also a head per other path reading of the best's members
 };
 
 // Heads from the columns `candidates` of `scan` (n_y × M).

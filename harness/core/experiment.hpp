@@ -21,7 +21,8 @@
 //   rows = 2
 //
 //   [metrics]                         # options of the kind's metrics (track-before-detect:
-//   gospa_cutoff = 2                  #   GOSPA c, p, α); recorded in meta.json
+//   gospa_cutoff = 2                  #   GOSPA c, p, α; tracking: gate_km, ospa_cutoff_km, ...);
+//                                     #   recorded in meta.json
 //
 //   [sweep]                           # a full-factorial block; [sweep.NAME] adds more blocks,
 //   spacing = 0:0.5:10                # whose points are concatenated in file order.

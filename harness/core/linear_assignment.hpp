@@ -37,8 +37,8 @@
 // constant square matrix gives the identity). Any optimum may be returned when several exist;
 // the total is optimal up to floating-point rounding of the reduced costs.
 //
-// Used by the GOSPA metric (harness/tbd/gospa.hpp); meant as the inner solver of Murty's k-best
-// assignment for MD-HMHT.
+// Used by the GOSPA metric (harness/tbd/gospa.hpp) and as the inner solver of Murty's k-best
+// assignment (algorithms/tracking/murty.hpp) for MD-HMHT.
 #include <vector>
 
 namespace dabench {

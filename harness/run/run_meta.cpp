@@ -73,7 +73,10 @@ std::string run_meta_json(const RunPlan& plan, const RunRecord& record) {
       .add("end_time", record.end_time)
       .add("wall_seconds", record.wall_seconds)
       .add("work_fraction", record.work_fraction);
-  if (plan.kind == RunKind::tracking) meta.add_raw("tracking_metrics", tracking_metrics_json(TrackingMetricsOptions{}));
+  if (plan.kind == RunKind::tracking) {
+    meta.add_raw("tracking_metrics", tracking_metrics_json(
+                                         make_options<TrackingMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
+  }
   if (plan.kind == RunKind::tbd) {
     meta.add_raw("tbd_metrics",
                  tbd_metrics_json(make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));

@@ -12,6 +12,7 @@
 #include "harness/single_scan/registry.hpp"
 #include "harness/tbd/metrics.hpp"
 #include "harness/tbd/registry.hpp"
+#include "harness/tracking/metrics.hpp"
 #include "harness/tracking/registry.hpp"
 
 namespace dabench {
@@ -215,12 +216,13 @@ RunPlan make_run_plan(Experiment loaded, const RunOptions& options) {
               : tbd != nullptr      ? RunKind::tbd
                                     : RunKind::single_scan;
   if (!experiment.metric_settings.empty()) {
-    if (plan.kind != RunKind::tbd) {
+    if (plan.kind != RunKind::tbd && plan.kind != RunKind::tracking) {
       throw InputError(fmt::format("{}: scenario '{}' is {}, whose metrics have no [metrics] options (remove the "
                                    "section)", path, experiment.scenario, kind_name(plan.kind)));
     }
     try {
-      make_options<TbdMetricsOptions>(experiment.metric_settings, "[metrics]");
+      if (plan.kind == RunKind::tbd) make_options<TbdMetricsOptions>(experiment.metric_settings, "[metrics]");
+      else make_options<TrackingMetricsOptions>(experiment.metric_settings, "[metrics]");
     } catch (const InputError& error) {
       throw InputError(fmt::format("{}: {}", path, error.what()));
     }

@@ -8,7 +8,7 @@
 // and iterations.csv when the experiment says `iterations = true` (an error for other kinds);
 // a track-before-detect scenario runs TBD trackers frame by frame and also writes steps.csv,
 // estimates.csv and frames.csv (harness/run/tbd_execution.hpp). The experiment's [metrics]
-// lines set the kind's metric options (track-before-detect only; an error for other kinds).
+// lines set the kind's metric options (track-before-detect and tracking; an error for other kinds).
 #include <cstdint>
 #include <optional>
 #include <string>

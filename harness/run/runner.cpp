@@ -170,7 +170,8 @@ double with_execution(const RunPlan& plan, Body&& body) {
     std::vector<std::unique_ptr<TrackingScenario>> scenarios;
     const auto* entry = tracking_scenario_registry().find(plan.experiment.scenario);
     for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-    return body(TrackingExecution(plan, std::move(scenarios), TrackingMetricsOptions{}));
+    return body(TrackingExecution(plan, std::move(scenarios),
+                                  make_options<TrackingMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
   }
   if (plan.kind == RunKind::tbd) {
     std::vector<std::unique_ptr<TbdScenario>> scenarios;

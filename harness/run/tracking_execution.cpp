@@ -75,7 +75,7 @@ TrackingExecution::TrackingExecution(const RunPlan& plan, std::vector<std::uniqu
       point_prefix_(plan.point_row_prefixes()),
       spec_field_(plan.spec_fields()),
       record_iterations_(plan.experiment.record_iterations) {
-  metrics_.validate();
+  if (const std::string why = metrics_.validate(); !why.empty()) throw InputError("[metrics]: " + why);
 }
 
 TrackingWorker TrackingExecution::make_worker() const {

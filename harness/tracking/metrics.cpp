@@ -47,13 +47,22 @@ void check_track(const Track& track, int scans) {
 
 }  // namespace
 
-void TrackingMetricsOptions::validate() const {
-  if (min_track_length < 1) throw InputError("tracking metrics: min_track_length must be ≥ 1");
-  if (!(gate_km > 0.0)) throw InputError("tracking metrics: gate_km must be > 0");
-  if (!(min_follow_fraction > 0.0 && min_follow_fraction <= 1.0))
-    throw InputError("tracking metrics: min_follow_fraction must be in (0, 1]");
-  if (!(ospa_cutoff_km > 0.0)) throw InputError("tracking metrics: ospa_cutoff_km must be > 0");
-  if (!(ospa_order >= 1.0)) throw InputError("tracking metrics: ospa_order must be ≥ 1");
+void TrackingMetricsOptions::bind(ParamList& p) {
+  p.add("min_track_length", min_track_length, "scans a confirmed track needs to be scored (Sec. IV-B: 5), >= 1");
+  p.add("gate_km", gate_km,
+        "follow gate, km of ground-plane distance: a track farther from a target does not follow it (not in the paper)");
+  p.add("min_follow_fraction", min_follow_fraction, "share of a track's scans it must follow its target, else false, in (0, 1]");
+  p.add("ospa_cutoff_km", ospa_cutoff_km, "OSPA cut-off c, km (not in the paper)");
+  p.add("ospa_order", ospa_order, "OSPA order p (not in the paper), >= 1");
+}
+
+std::string TrackingMetricsOptions::validate() const {
+  if (min_track_length < 1) return "min_track_length = " + std::to_string(min_track_length) + " must be >= 1";
+  if (!(gate_km > 0.0 && std::isfinite(gate_km))) return "gate_km must be finite and > 0";
+  if (!(min_follow_fraction > 0.0 && min_follow_fraction <= 1.0)) return "min_follow_fraction must be in (0, 1]";
+  if (!(ospa_cutoff_km > 0.0 && std::isfinite(ospa_cutoff_km))) return "ospa_cutoff_km must be finite and > 0";
+  if (!(ospa_order >= 1.0 && std::isfinite(ospa_order))) return "ospa_order must be finite and >= 1";
+  return {};
 }
 
 Eigen::Vector2d ground_point(const Eigen::VectorXd& state) {
@@ -91,7 +100,7 @@ double ospa_distance(const std::vector<Eigen::Vector2d>& x, const std::vector<Ei
 
 TrackingMetrics compute_tracking_metrics(const TrackingTruth& truth, const TrackSet& tracks,
                                          const TrackingMetricsOptions& options) {
-  options.validate();
+  if (const std::string why = options.validate(); !why.empty()) throw InputError("tracking metrics: " + why);
   const int scans = truth_scan_count(truth, tracks);
   std::vector<const Track*> eligible;
   for (const auto& track : tracks.tracks) {

@@ -33,14 +33,17 @@
 //  - MOSPA: mean over all K scans of OSPA (Schuhmacher, Vo & Vo 2008, eq 3) between the alive
 //    targets' and the eligible tracks' ground-plane points (false and ghost tracks included),
 //    order p, cut-off c (km).
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "harness/core/params.hpp"
 #include "harness/tracking/problem.hpp"
 
 namespace dabench {
 
+// Settable in a tracking experiment's [metrics] section (recorded in meta.json).
 struct TrackingMetricsOptions {
   int min_track_length = 5;           // Sec. IV-B: "tracks with minimum length five"
   double gate_km = 20.0;              // follow gate on ground-plane distance (not in the paper)
@@ -48,7 +51,8 @@ struct TrackingMetricsOptions {
   double ospa_cutoff_km = 50.0;       // OSPA c (the paper gives none)
   double ospa_order = 2.0;            // OSPA p (the paper gives none)
 
-  void validate() const;  // InputError on a non-positive length, gate, cut-off or order
+  void bind(ParamList& p);
+  std::string validate() const;  // "" if valid; else why (a non-positive length, gate or cut-off, ...)
 };
 
 struct TrackingMetrics {
@@ -72,8 +76,8 @@ double ospa_distance(const std::vector<Eigen::Vector2d>& x, const std::vector<Ei
 // Ground-plane point (g cos ϑ, g sin ϑ) of a state [g, ġ, ϑ, ϑ̇].
 Eigen::Vector2d ground_point(const Eigen::VectorXd& state);
 
-// Metrics of one run. InputError when the tracks do not fit the truth (state dimension below 4,
-// tracks outside the K scans, column counts that differ).
+// Metrics of one run. InputError when the options are invalid or the tracks do not fit the
+// truth (state dimension below 4, tracks outside the K scans, column counts that differ).
 TrackingMetrics compute_tracking_metrics(const TrackingTruth& truth, const TrackSet& tracks,
                                          const TrackingMetricsOptions& options);
 

@@ -104,8 +104,65 @@ TEST_CASE("jdt-vb heads: an ambiguous pair starts a head for every path-shifted 
   CHECK(dabench::form_track_heads(apart, all_columns(apart), kSensor, head_options()).empty());
 }
 
+TEST_CASE("jdt-vb heads: alternative_heads = 0 starts only the best reading of an ambiguous pair", "[jdt_vb]") {
+  // The pair of the test above: with alternatives two or more heads, without exactly one, the
+  // best of them (the members and p(s = 1) are the same).
+  const GroundState x(1800.0, -0.1, 0.5, 0.0);
+  const Eigen::MatrixXd scan = detections(x, {0, 2});
+  const auto all = dabench::form_track_heads(scan, all_columns(scan), kSensor, head_options());
+  auto options = head_options();
+  options.alternative_heads = false;
+  const auto best = dabench::form_track_heads(scan, all_columns(scan), kSensor, options);
+  REQUIRE(all.size() >= 2);
+  REQUIRE(best.size() == 1);
+  CHECK(best[0].members.size() == 2);
+  CHECK(best[0].initial_active == 0.25);
+  // One of the alternatives is the best reading (same state).
+  bool found = false;
+  for (const auto& h : all) found = found || (h.mean - best[0].mean).norm() < 1e-9;
+  CHECK(found);
+  // An unambiguous group (four paths) gives the same single head either way.
+  const Eigen::MatrixXd four = detections(GroundState(1750.0, 0.1, 0.48, 8.7e-5), {0, 1, 2, 3});
+  const auto with = dabench::form_track_heads(four, all_columns(four), kSensor, head_options());
+  const auto without = dabench::form_track_heads(four, all_columns(four), kSensor, options);
+  REQUIRE(with.size() == 1);
+  REQUIRE(without.size() == 1);
+  CHECK(with[0].mean == without[0].mean);
+}
+
+TEST_CASE("jdt-vb: literal = 1 is eq (32) fusion, the literal deletion rule and no alternative heads", "[jdt_vb]") {
+  dabench::JdtVbOptions literal;
+  literal.literal = true;
+  const dabench::JdtVbOptions resolved = literal.resolved();
+  CHECK_FALSE(resolved.joint_fusion);
+  CHECK(resolved.delete_on_mean);
+  CHECK_FALSE(resolved.alternative_heads);
+  CHECK(resolved.confirm == literal.confirm);  // the rest is untouched
+  CHECK(dabench::JdtVbOptions{}.resolved().joint_fusion);  // without literal nothing changes
+  // literal = 1 overrides the three keys even when they are given, and runs exactly the
+  // spelled-out configuration; that differs from the default on this draw.
+  const auto sample = draw(0.75, 125.0, 1);
+  std::vector<dabench::TrackSet> runs;
+  for (const char* spec : {"jdt-vb:literal=1,joint_fusion=1", "jdt-vb:joint_fusion=0,delete_on_mean=1,alternative_heads=0",
+                           "jdt-vb", "jdt-vb:alternative_heads=0"}) {
+    auto tracker = dabench::make_tracker(spec);
+    dabench::SolveReport report;
+    tracker->run(sample.problem, runs.emplace_back(), report);
+    REQUIRE(report.skipped.empty());
+  }
+  const auto same = [](const dabench::TrackSet& a, const dabench::TrackSet& b) {
+    if (a.tracks.size() != b.tracks.size()) return false;
+    for (std::size_t t = 0; t < a.tracks.size(); ++t)
+      if (a.tracks[t].first_scan != b.tracks[t].first_scan || a.tracks[t].states != b.tracks[t].states) return false;
+    return true;
+  };
+  CHECK(same(runs[0], runs[1]));
+  CHECK_FALSE(same(runs[0], runs[2]));
+  CHECK_FALSE(same(runs[2], runs[3]));  // alternative heads alone change the tracks
+}
+
 TEST_CASE("jdt-vb: the free energy never decreases over the VB iterations", "[jdt_vb]") {
-  for (const char* spec : {"jdt-vb", "jdt-vb:joint_fusion=0", "jdt-vb:delete_on_mean=1"}) {
+  for (const char* spec : {"jdt-vb", "jdt-vb:joint_fusion=0", "jdt-vb:delete_on_mean=1", "jdt-vb:literal=1"}) {
     auto tracker = dabench::make_tracker(spec);
     for (int run = 0; run < 3; ++run) {
       const auto sample = draw(0.75, 125.0, run);

@@ -375,6 +375,28 @@ TEST_CASE("run tracking: trials.csv metrics of a constructed case, by hand", "[r
   CHECK(contains(meta, "\"min_track_length\": 5"));
 }
 
+TEST_CASE("run tracking: [metrics] sets the follow gate and the OSPA cut-off", "[run][tracking]") {
+  // The constructed case with a 2 km gate and c = 100 km: the near track (3.1 km off) follows
+  // nothing and is false; OSPA charges 100 km where it charged 50.
+  TempDir dir;
+  dir.write("c.ini", std::string(kConstructed) + "[metrics]\ngate_km = 2\nospa_cutoff_km = 100\n");
+  run_in(dir, "c.ini", "C", 1);
+  const CsvTable trials = parse_csv(dir.read("C/trials.csv"));
+  const double d = ground_distance(1800.0, 0.5, 1803.0, 0.5005);
+  REQUIRE(d > 2.0);
+  REQUIRE(d < 20.0);
+  CHECK(number(trials, 0, "nvt") == 0.0);
+  CHECK(number(trials, 0, "nft") == 1.0);
+  CHECK(number(trials, 0, "false_tracks") == 1.0);
+  CHECK(number(trials, 0, "tpd") == 0.0);
+  CHECK(trials.at(0, "aee_range_km").empty());
+  CHECK(number(trials, 0, "mospa_km") == Approx((0.0 + 2 * 100.0 + 5 * d) / 8.0).epsilon(1e-9));
+  const std::string meta = dir.read("C/meta.json");
+  CHECK(contains(meta, "\"gate_km\": 2,"));
+  CHECK(contains(meta, "\"ospa_cutoff_km\": 100,"));
+  CHECK(contains(meta, "\"min_track_length\": 5"));
+}
+
 TEST_CASE("run tracking: tracks.csv and measurements.csv of a constructed case", "[run][tracking]") {
   TempDir dir;
   dir.write("c.ini", kConstructed);
@@ -586,6 +608,10 @@ TEST_CASE("run tracking: configuration errors are one clear line", "[run][tracki
   refused("scenario = othr\ntrials = 2\nalgorithm = test-fixed-track:nokey=1\n", {"nokey"});
   refused("scenario = othr\ntrials = 2\nalgorithm = test-fixed-track\n[sweep]\npd = 0.5, 1.5\n",
           {"sweep point 1", "pd = 1.5"});
+  refused("scenario = othr\ntrials = 2\nalgorithm = test-fixed-track\n[metrics]\ngate_km = -1\n",
+          {"bad.ini", "[metrics]", "gate_km"});
+  refused("scenario = othr\ntrials = 2\nalgorithm = test-fixed-track\n[metrics]\ngospa_cutoff = 2\n",
+          {"bad.ini", "gospa_cutoff"});
 }
 
 TEST_CASE("run tracking: from the command line an unknown tracker is one line, status 2", "[run][tracking][cli]") {

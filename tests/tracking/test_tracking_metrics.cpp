@@ -5,6 +5,7 @@
 // short and tentative tracks, and known range and bearing errors.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -209,6 +210,43 @@ TEST_CASE("a track beyond the gate of its target is false and the target missed"
   REQUIRE(m.nvt == 1.0);
   REQUIRE(m.tpd == Approx(0.5));
   REQUIRE(m.ttl_scans == 0.0);  // only target 1 is followed
+}
+
+TEST_CASE("the follow gate and the OSPA cut-off are options that change the metrics as computed") {
+  // Target 0's track 25 km out in range over its whole life (scans 0..19); target 1 exact.
+  TrackSet set = perfect();
+  set.tracks[0] = on_target(1, 0, 0, 19, 25.0);
+  TrackingMetricsOptions options;
+  // OSPA per scan (p = 2): scans 0..8 {t0} vs {off}: min(c, 25); scans 9..19 {t0, t1} vs
+  // {off, t1}: min(c, 25)/√2; scans 20..29: 0.
+  const auto mospa = [](double c) { return (9.0 * std::min(c, 25.0) + 11.0 * std::min(c, 25.0) / std::sqrt(2.0)) / kScans; };
+  // Default gate 20 km < 25: a false track, target 0 missed (as in the test above).
+  TrackingMetrics m = dabench::compute_tracking_metrics(two_targets(), set, options);
+  REQUIRE(m.nvt == 1.0);
+  REQUIRE(m.false_tracks == 1.0);
+  REQUIRE(m.aee_range_km == Approx(0.0).margin(1e-12));
+  REQUIRE(m.mospa_km == Approx(mospa(50.0)));
+  // gate_km = 50: it follows target 0; AEE-R takes its 20 scans of 25 km over 41 pairs.
+  options.gate_km = 50.0;
+  m = dabench::compute_tracking_metrics(two_targets(), set, options);
+  REQUIRE(m.nvt == 2.0);
+  REQUIRE(m.nft == 0.0);
+  REQUIRE(m.tpd == Approx(1.0));
+  REQUIRE(m.aee_range_km == Approx(20.0 * 25.0 / 41.0));
+  REQUIRE(m.mospa_km == Approx(mospa(50.0)));  // OSPA does not use the gate
+  // ospa_cutoff_km = 10 caps the 25 km error at 10; 100 leaves MOSPA as at 50 here ...
+  options.ospa_cutoff_km = 10.0;
+  REQUIRE(dabench::compute_tracking_metrics(two_targets(), set, options).mospa_km == Approx(mospa(10.0)));
+  options.ospa_cutoff_km = 100.0;
+  REQUIRE(dabench::compute_tracking_metrics(two_targets(), set, options).mospa_km == Approx(mospa(100.0)));
+  // ... but doubles what a missed target costs: target 0 untracked at scans 0..2.
+  TrackSet late = perfect();
+  late.tracks[0] = on_target(1, 0, 3, 19);
+  REQUIRE(dabench::compute_tracking_metrics(two_targets(), late, options).mospa_km == Approx(3.0 * 100.0 / kScans));
+  // Bad values are InputErrors naming the key.
+  options.gate_km = 0.0;
+  REQUIRE(options.validate() == "gate_km must be finite and > 0");
+  REQUIRE_THROWS_AS(dabench::compute_tracking_metrics(two_targets(), set, options), dabench::InputError);
 }
 
 TEST_CASE("mean over runs skips undefined fields") {
