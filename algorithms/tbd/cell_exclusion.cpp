@@ -13,7 +13,6 @@ namespace {
 constexpr double kMaxLogOdds = 700.0;  // log π is capped here (a node that must cover the cell)
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 
-
 }  // namespace
 
 void CellExclusion::reset(const TbdSensor& sensor, double radius) {
@@ -122,7 +121,8 @@ double CellExclusion::update(int index, bool new_pi) {
   node.total = total;
   node.absent = std::exp(node.log_absent - shift);
   if (!new_pi) return 0.0;
-  // The belief's change since the node's last update: |Δ r̃| + total variation of its weights.
+  // The belief's change since the node's last update: the larger of |Δ r̃| and the total
+  // variation of its weights.
   const double existence = total > 0.0 ? total / (total + node.absent) : 0.0;
   double change = std::abs(existence - node.existence);
   double variation = 0.0;
