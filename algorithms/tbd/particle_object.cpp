@@ -79,6 +79,21 @@ void sample_prior(ParticleObject& object, const TbdPrior& prior, int count, Rand
   }
 }
 
+void predict_objects(std::vector<ParticleObject>& objects, const TbdProblem& problem, int k, int particles,
+                     int& next_label, RandomStream& rng) {
+  if (k == 0) {
+    for (const TbdPrior& prior : problem.initial_objects) {
+      objects.emplace_back();
+      sample_prior(objects.back(), prior, particles, rng);
+      objects.back().label = next_label++;
+    }
+    return;
+  }
+  for (ParticleObject& o : objects) {
+    predict(o, problem.motion, problem.sensor, problem.filter.survival_probability, rng);
+  }
+}
+
 void belief_samples(const std::vector<ParticleObject>& objects, std::vector<TbdBeliefSample>& samples) {
   samples.clear();
   for (const ParticleObject& o : objects) {

@@ -8,6 +8,8 @@
 //    has left the region ([C] of the notes).
 //  - resample(): systematic resampling to a given count (equal weights after).
 //  - sample_prior(): particles of a TbdPrior (a Gaussian, possibly singular).
+//  - predict_objects(): the legacy POs of step k: at k = 0 the problem's initial objects
+//    (sample_prior, new labels), afterwards each PO predicted.
 //  - belief_samples(): POs' particles as the tracker's belief samples (beliefs.csv).
 #include <vector>
 
@@ -39,6 +41,10 @@ void resample(ParticleObject& object, int count, RandomStream& rng, ParticleObje
 
 // `count` equally weighted particles drawn from N(prior.mean, prior.covariance), r = prior.existence.
 void sample_prior(ParticleObject& object, const TbdPrior& prior, int count, RandomStream& rng);
+
+// The legacy POs at step k (see the header), `particles` per initial object.
+void predict_objects(std::vector<ParticleObject>& objects, const TbdProblem& problem, int k, int particles,
+                     int& next_label, RandomStream& rng);
 
 // `samples` (replaced) = every particle of every PO with its label, existence and weight.
 void belief_samples(const std::vector<ParticleObject>& objects, std::vector<TbdBeliefSample>& samples);

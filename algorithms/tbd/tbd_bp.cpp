@@ -65,17 +65,7 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     report.skipped = "exact_kappa: new potential objects (birth_mean > 0) are evaluated with kappa-tilde only";
     return;
   }
-  if (k == 0) {
-    for (const TbdPrior& prior : problem.initial_objects) {
-      legacy_.emplace_back();
-      sample_prior(legacy_.back(), prior, p, rng_);
-      legacy_.back().label = next_label_++;
-    }
-  } else {
-    for (ParticleObject& o : legacy_) {
-      predict(o, problem.motion, sensor, problem.filter.survival_probability, rng_);
-    }
-  }
+  predict_objects(legacy_, problem, k, p, next_label_, rng_);
 
   // 1. Legacy POs: L iterations among themselves (serial or flooding schedule).
   all_.clear();

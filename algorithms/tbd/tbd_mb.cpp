@@ -78,15 +78,7 @@ void TbdMb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
   const double survival = problem.filter.survival_probability;
 
   // 1. Prediction: legacy Bernoullis and the Poisson intensity of undetected objects.
-  if (k == 0) {
-    for (const TbdPrior& prior : problem.initial_objects) {
-      legacy_.emplace_back();
-      sample_prior(legacy_.back(), prior, p, rng_);
-      legacy_.back().label = next_label_++;
-    }
-  } else {
-    for (ParticleObject& o : legacy_) predict(o, problem.motion, sensor, survival, rng_);
-  }
+  predict_objects(legacy_, problem, k, p, next_label_, rng_);
   const double birth = problem.filter.birth_mean / sensor.cells();
   for (double& mass : undetected_) mass = survival * mass + birth;
 
