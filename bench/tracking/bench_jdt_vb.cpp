@@ -10,24 +10,11 @@
 #include <vector>
 
 #include "algorithms/tracking/jdt_vb.hpp"
+#include "bench/tracking/othr_pool.hpp"
 #include "harness/tracking/registry.hpp"
-#include "scenarios/tracking/othr.hpp"
 
 namespace dabench::bench {
 namespace {
-
-std::vector<TrackingScenarioSample> othr_pool(double pd, double clutter) {
-  OthrOptions options;
-  options.pd = pd;
-  options.clutter = clutter;
-  const OthrScenario scenario(options);
-  std::vector<TrackingScenarioSample> pool(8);
-  for (int run = 0; run < 8; ++run) {
-    RandomStream rng(2019, 0, static_cast<std::uint32_t>(run));
-    scenario.generate(rng, pool[run]);
-  }
-  return pool;
-}
 
 void jdt_vb_run(benchmark::State& state, const char* spec) {
   const double pd = static_cast<double>(state.range(0)) / 100.0, clutter = static_cast<double>(state.range(1));
