@@ -280,16 +280,24 @@ class MdHmhtRun {
       if (next->empty_gates < miss_limit_) child.live.push_back(next);
       else if (next->confirmed) child.ended.push_back(next);
     }
-    // Once a reading of a return group is confirmed, its tentative siblings go.
-    std::vector<long> confirmed_families;
-    for (const NodePtr& node : child.live)
-      if (node->confirmed) confirmed_families.push_back(node->family);
-    std::sort(confirmed_families.begin(), confirmed_families.end());
-    std::erase_if(child.live, [&](const NodePtr& node) {
-      return !node->confirmed && std::binary_search(confirmed_families.begin(), confirmed_families.end(), node->family);
-    });
+    keep_one_reading(child.live);
     child.live.insert(child.live.end(), heads.begin(), heads.end());
     return child;
+  }
+
+  // Once readings of one return group are confirmed, the confirmed one with the largest LLR
+  // (then the oldest) stays and its siblings go.
+  static void keep_one_reading(std::vector<NodePtr>& live) {
+    std::map<long, const TrackNode*> kept;  // family → its surviving confirmed reading
+    for (const NodePtr& node : live) {
+      if (!node->confirmed) continue;
+      const auto [it, inserted] = kept.emplace(node->family, node.get());
+      if (!inserted && node->llr > it->second->llr) it->second = node.get();
+    }
+    std::erase_if(live, [&](const NodePtr& node) {
+      const auto it = kept.find(node->family);
+      return it != kept.end() && it->second != node.get();
+    });
   }
 
   // A node updated with one child's assignment, shared with every child that assigns the same.

@@ -52,8 +52,8 @@
 // so JDT-VB's initiator (form_track_heads, Sec. III-E, ρ = [80 km, 0.005 km/s, 0.03 rad])
 // starts the same tentative tracks in every child. With `alternative_heads` (dabench's default,
 // as in jdt-vb; not in the paper) every equally consistent path reading of a return group starts
-// a head; the readings of one group are siblings, and when one is confirmed the tentative others
-// are deleted [O].
+// a head; the readings of one group are siblings, and once one is confirmed the others are
+// deleted (of siblings confirmed at one scan, the one with the largest LLR stays) [O].
 //
 // Output: the best hypothesis after the last scan, its confirmed tracks (live and deleted),
 // filtered means and covariance diagonals from the head's scan (the paper's MD-HMHT reports
