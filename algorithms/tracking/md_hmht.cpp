@@ -67,10 +67,10 @@ struct Hypothesis {
   long id = 0;
 };
 
-// A child before selection: its parent, rank among the parent's children, score, and the
-// measurement of each (live track of the parent, path), −1 for none.
+// A child before selection: its parent, score, and the measurement of each (live track of the
+// parent, path), −1 for none. Children are made parent by parent, each parent's best first.
 struct Child {
-  int parent = 0, rank = 0;
+  int parent = 0;
   double score = 0.0;
   std::vector<int> measurement;
 };
@@ -155,7 +155,6 @@ class MdHmhtRun {
     for (int i = 0; i < static_cast<int>(totals_.size()); ++i) {
       Child child;
       child.parent = parent;
-      child.rank = i;
       child.score = h.score + miss_sum - totals_[i];
       child.measurement.assign(static_cast<std::size_t>(tracks) * paths_, -1);
       for (int c = 0; c < clusters; ++c) {
@@ -226,8 +225,9 @@ class MdHmhtRun {
     murty_.solve(cost_.data(), miss_.data(), R, C, n_, lists_[c]);
   }
 
-  // Reading A keeps the n best children overall, B every parent's n best; then N-scan pruning
-  // keeps the children that share the best child's ancestor `window` scans back.
+  // Reading A keeps the n best children overall, B every parent's n best (ties in order of
+  // making); then N-scan pruning keeps the children that share the best child's ancestor
+  // `window` scans back.
   void select(std::vector<Child>& children) const {
     std::stable_sort(children.begin(), children.end(), [](const Child& a, const Child& b) { return a.score > b.score; });
     if (!o_.per_parent && static_cast<int>(children.size()) > n_) children.resize(n_);
