@@ -27,6 +27,7 @@
 // add_to_field() then adds an accepted new PO's belief, so the next new PO sees it (a serial
 // schedule over the new POs; see tbd_bp.hpp for why).
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -131,9 +132,11 @@ class CellMessages {
   double mean_per_spread_ = 0.0, variance_per_spread_ = 0.0, variance_per_spread2_ = 0.0;
   std::vector<Work> work_;
   std::vector<const ParticleObject*> objects_;  // of the last run()
+  bool outgoing_moments_ready_ = false;  // the last run() left β^(L+1) moments in its POs' terms
   std::vector<CellTotals> totals_;  // per cell of the frame: the Σ_n of eqs (5), (9)
   std::vector<double> shifted_;       // scratch: one PO's (log) weights
-  std::vector<double> work_product_;  // scratch: determinant ratios along a window row
+  std::vector<double> work_product_;         // scratch: product of determinant ratios (mantissa)
+  std::vector<std::int64_t> work_exponent_;  // scratch: its binary exponent
 };
 
 }  // namespace dabench
