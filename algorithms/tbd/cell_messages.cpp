@@ -210,6 +210,31 @@ void CellMessages::add_to_field(const ParticleObject& object, const Work& work) 
   }
 }
 
+// g_j(p) = exp(−(c_x − p_x)²/(2σ_h²)) · exp(−(c_y − p_y)²/(2σ_h²)), tabulated per axis over
+// work.window.
+void CellMessages::tabulate_spread(const ParticleObject& object, Work& work) const {
+  const TbdSensor& s = *sensor_;
+  const CellWindow& w = work.window;
+  const int p = object.size();
+  const double scale = -0.5 / s.spread_variance;
+  grow_buffer(work.spread_x, static_cast<std::size_t>(w.columns()) * p);
+  grow_buffer(work.spread_y, static_cast<std::size_t>(w.rows()) * p);
+  for (int c = 0; c < w.columns(); ++c) {
+    const double centre = s.centre_x(w.column_begin + c);
+    double* g = &work.spread_x[static_cast<std::size_t>(c) * p];
+    const double* x = object.x.data();
+#pragma omp simd
+    for (int i = 0; i < p; ++i) g[i] = portable_exp(scale * (centre - x[i]) * (centre - x[i]));
+  }
+  for (int r = 0; r < w.rows(); ++r) {
+    const double centre = s.centre_y(w.row_begin + r);
+    double* g = &work.spread_y[static_cast<std::size_t>(r) * p];
+    const double* y = object.y.data();
+#pragma omp simd
+    for (int i = 0; i < p; ++i) g[i] = portable_exp(scale * (centre - y[i]) * (centre - y[i]));
+  }
+}
+
 void CellMessages::prepare(const ParticleObject& object, Work& work) const {
   const TbdSensor& s = *sensor_;
   const int p = object.size();
@@ -234,24 +259,7 @@ void CellMessages::prepare(const ParticleObject& object, Work& work) const {
   w.row_end = std::max(w.row_begin, last(y_high, s.y_min, s.rows));
   if (p == 0) w.column_end = w.column_begin;
 
-  // g_j(p) = exp(−(c_x − p_x)²/(2σ_h²)) · exp(−(c_y − p_y)²/(2σ_h²)), tabulated per axis.
-  const double scale = -0.5 / s.spread_variance;
-  grow_buffer(work.spread_x, static_cast<std::size_t>(w.columns()) * p);
-  grow_buffer(work.spread_y, static_cast<std::size_t>(w.rows()) * p);
-  for (int c = 0; c < w.columns(); ++c) {
-    const double centre = s.centre_x(w.column_begin + c);
-    double* g = &work.spread_x[static_cast<std::size_t>(c) * p];
-    const double* x = object.x.data();
-#pragma omp simd
-    for (int i = 0; i < p; ++i) g[i] = portable_exp(scale * (centre - x[i]) * (centre - x[i]));
-  }
-  for (int r = 0; r < w.rows(); ++r) {
-    const double centre = s.centre_y(w.row_begin + r);
-    double* g = &work.spread_y[static_cast<std::size_t>(r) * p];
-    const double* y = object.y.data();
-#pragma omp simd
-    for (int i = 0; i < p; ++i) g[i] = portable_exp(scale * (centre - y[i]) * (centre - y[i]));
-  }
+  tabulate_spread(object, work);
   const std::size_t pairs = static_cast<std::size_t>(w.cells()) * p;
   grow_buffer(work.own_factor, pairs);
   std::fill_n(work.own_factor.begin(), pairs, 1.0);  // κ^(0) ≡ 1
@@ -323,45 +331,52 @@ void CellMessages::accumulate(const Work& work, double sign) {
 void CellMessages::gaussian_log_ratios(const ParticleObject& object, Work& work, bool interaction, bool own_factors) {
   const TbdSensor& s = *sensor_;
   const CellWindow& w = work.window;
-  const int p = object.size();
-  std::fill(work.total.begin(), work.total.end(), 0.0);
+  for (int c = 0; c < w.cells(); ++c) {
+    const int cell = (w.row_begin + c / w.columns()) * s.columns + w.column_begin + c % w.columns();
+    CellTerms& t = work.terms[c];
+    // κ̃(0): e = z − Σ_{n'≠n} μ_{n',j}, V = C_ε + Σ_{n'≠n} (R − μμᵀ)  (eqs 5, 9 with r_n = 0)
+    t.e_x = (*frame_)(0, cell);
+    t.e_y = (*frame_)(1, cell);
+    t.v_xx = t.v_yy = s.noise_variance;
+    t.v_xy = 0.0;
+    if (interaction) {
+      const CellTotals& total = totals_[cell];
+      t.e_x -= total.mean_x - t.mean_x;
+      t.e_y -= total.mean_y - t.mean_y;
+      t.v_xx += total.v_xx - (t.r_xx - t.mean_x * t.mean_x);
+      t.v_xy += total.v_xy - (t.r_xy - t.mean_x * t.mean_y);
+      t.v_yy += total.v_yy - (t.r_yy - t.mean_y * t.mean_y);
+    }
+  }
+  sum_log_ratios(work.terms, work, object.size(), work.total, own_factors ? work.own_factor.data() : nullptr);
+}
+
+void CellMessages::sum_log_ratios(const std::vector<CellTerms>& terms, const Work& spread, int p,
+                                  std::vector<double>& total, double* own_factor) {
+  const CellWindow& w = spread.window;
+  total.assign(p, 0.0);
   // Σ_j λ = −½ Σ_j log(det_j/det0_j) − ½ Σ_j (quad_j − quad0_j). The determinant ratios (each
   // in [1, (1 + c_max/σ²)²], so a window row cannot overflow) are multiplied over the whole
   // window, the product's binary exponent moved into work_exponent_ after every row (exact), and
   // one log taken per particle at the end.
   work_product_.assign(p, 1.0);
   work_exponent_.assign(p, 0);
-  const SpreadCoefficients spread{mean_per_spread_, variance_per_spread_, variance_per_spread2_};
+  const SpreadCoefficients coefficients{mean_per_spread_, variance_per_spread_, variance_per_spread2_};
+  double* sum = total.data();
   double* product = work_product_.data();
   std::int64_t* exponent = work_exponent_.data();
   for (int row = 0; row < w.rows(); ++row) {
     for (int column = 0; column < w.columns(); ++column) {
       const int c = row * w.columns() + column;
-      const int cell = (w.row_begin + row) * s.columns + w.column_begin + column;
-      CellTerms& t = work.terms[c];
-      // κ̃(0): e = z − Σ_{n'≠n} μ_{n',j}, V = C_ε + Σ_{n'≠n} (R − μμᵀ)  (eqs 5, 9 with r_n = 0)
-      t.e_x = (*frame_)(0, cell);
-      t.e_y = (*frame_)(1, cell);
-      t.v_xx = t.v_yy = s.noise_variance;
-      t.v_xy = 0.0;
-      if (interaction) {
-        const CellTotals& total = totals_[cell];
-        t.e_x -= total.mean_x - t.mean_x;
-        t.e_y -= total.mean_y - t.mean_y;
-        t.v_xx += total.v_xx - (t.r_xx - t.mean_x * t.mean_x);
-        t.v_xy += total.v_xy - (t.r_xy - t.mean_x * t.mean_y);
-        t.v_yy += total.v_yy - (t.r_yy - t.mean_y * t.mean_y);
-      }
-      const double* gx = &work.spread_x[static_cast<std::size_t>(column) * p];
-      const double* gy = &work.spread_y[static_cast<std::size_t>(row) * p];
-      double* own = own_factors ? &work.own_factor[static_cast<std::size_t>(c) * p] : nullptr;
-      const bool isotropic = spread.mean == 0.0 && t.v_xy == 0.0 && t.v_xx == t.v_yy;
-      if (isotropic) {
-        (own_factors ? isotropic_cell_log_ratios<true> : isotropic_cell_log_ratios<false>)(
-            t, spread, gx, gy, p, work.total.data(), product, own);
+      const CellTerms& t = terms[c];
+      const double* gx = &spread.spread_x[static_cast<std::size_t>(column) * p];
+      const double* gy = &spread.spread_y[static_cast<std::size_t>(row) * p];
+      double* own = own_factor != nullptr ? own_factor + static_cast<std::size_t>(c) * p : nullptr;
+      if (coefficients.mean == 0.0 && t.v_xy == 0.0 && t.v_xx == t.v_yy) {
+        (own ? isotropic_cell_log_ratios<true> : isotropic_cell_log_ratios<false>)(t, coefficients, gx, gy, p, sum,
+                                                                                    product, own);
       } else {
-        (own_factors ? cell_log_ratios<true> : cell_log_ratios<false>)(t, spread, gx, gy, p, work.total.data(),
-                                                                      product, own);
+        (own ? cell_log_ratios<true> : cell_log_ratios<false>)(t, coefficients, gx, gy, p, sum, product, own);
       }
     }
     constexpr std::uint64_t kMantissa = (std::uint64_t{1} << 52) - 1, kOne = std::uint64_t{1023} << 52;
@@ -372,30 +387,15 @@ void CellMessages::gaussian_log_ratios(const ParticleObject& object, Work& work,
       product[i] = std::bit_cast<double>((bits & kMantissa) | kOne);
     }
   }
-  for (int i = 0; i < p; ++i) work.total[i] -= 0.5 * (std::log(product[i]) + std::numbers::ln2 * exponent[i]);
+  for (int i = 0; i < p; ++i) {
+    sum[i] -= 0.5 * (std::log(product[i]) + std::numbers::ln2 * static_cast<double>(exponent[i]));
+  }
 }
 
-double CellMessages::log_ratio_at(const Work& work, double px, double py) const {
-  const TbdSensor& s = *sensor_;
-  const CellWindow& w = work.window;
-  const double scale = -0.5 / s.spread_variance;
-  double sum = 0.0;
-  for (int c = 0; c < w.cells(); ++c) {
-    const CellTerms& t = work.terms[c];
-    const double dx = s.centre_x(w.column_begin + c % w.columns()) - px;
-    const double dy = s.centre_y(w.row_begin + c / w.columns()) - py;
-    const double g = std::exp(scale * (dx * dx + dy * dy));
-    const double det0 = t.v_xx * t.v_yy - t.v_xy * t.v_xy;
-    const double quad0 = (t.e_x * t.e_x * t.v_yy - 2.0 * t.e_x * t.e_y * t.v_xy + t.e_y * t.e_y * t.v_xx) / det0;
-    const double ex = t.e_x - mean_per_spread_ * g;
-    const double extra = (variance_per_spread_ + variance_per_spread2_ * g) * g;
-    const double a = t.v_xx + extra;
-    const double d = t.v_yy + extra;
-    const double det = a * d - t.v_xy * t.v_xy;
-    const double quad = (ex * ex * d - 2.0 * ex * t.e_y * t.v_xy + t.e_y * t.e_y * a) / det;
-    sum += -0.5 * std::log(det / det0) - 0.5 * (quad - quad0);
-  }
-  return sum;
+void CellMessages::log_ratios_at(const Work& work, const ParticleObject& object, std::vector<double>& out) {
+  drawn_.window = work.window;
+  tabulate_spread(object, drawn_);
+  sum_log_ratios(work.terms, drawn_, object.size(), out, nullptr);
 }
 
 bool CellMessages::exact_log_ratios(const std::vector<ParticleObject*>& objects) {

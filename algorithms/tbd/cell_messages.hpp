@@ -105,9 +105,10 @@ class CellMessages {
   double evaluate(const ParticleObject& object, Work& work, bool interaction);
   // Adds the belief of an evaluated PO (existence r̃ = logistic(work.log_odds)) to the field.
   void add_to_field(const ParticleObject& object, const Work& work);
-  // Σ_j λ_{n,j} at a position not among the particles of an evaluated PO, under the messages
-  // evaluate() used: for the particles drawn when a new PO becomes a legacy PO.
-  double log_ratio_at(const Work& work, double px, double py) const;
+  // out[i] = Σ_j λ_{n,j} at the positions of `object`'s particles (not those of the evaluated
+  // PO `work`), under the messages evaluate() used and over its window: for the particles drawn
+  // when a new PO becomes a legacy PO. `out` may be object.weight.
+  void log_ratios_at(const Work& work, const ParticleObject& object, std::vector<double>& out);
 
  private:
   struct CellTotals {
@@ -122,6 +123,13 @@ class CellMessages {
   // λ of every particle and window cell: Σ_j λ in work.total and, with own_factors, exp(−λ)
   // per pair (what the next β moments divide out).
   void gaussian_log_ratios(const ParticleObject& object, Work& work, bool interaction, bool own_factors);
+  // The passes' kernel: total[i] = Σ_j λ_j(x^(i)) over spread.window for the particles
+  // tabulated in `spread`, under the κ̃(0) parameters (e, V) of `terms`; with own_factor,
+  // exp(−λ) per [window cell][particle] too.
+  void sum_log_ratios(const std::vector<CellTerms>& terms, const Work& spread, int p, std::vector<double>& total,
+                      double* own_factor);
+  // work.spread_x, work.spread_y for `object`'s particles over work.window.
+  void tabulate_spread(const ParticleObject& object, Work& work) const;
   bool exact_log_ratios(const std::vector<ParticleObject*>& objects);
   void belief(const ParticleObject& object, Work& work);
 
@@ -135,6 +143,7 @@ class CellMessages {
   bool outgoing_moments_ready_ = false;  // the last run() left β^(L+1) moments in its POs' terms
   std::vector<CellTotals> totals_;  // per cell of the frame: the Σ_n of eqs (5), (9)
   std::vector<double> shifted_;       // scratch: one PO's (log) weights
+  Work drawn_;                        // scratch: log_ratios_at()'s spread tables
   std::vector<double> work_product_;         // scratch: product of determinant ratios (mantissa)
   std::vector<std::int64_t> work_exponent_;  // scratch: its binary exponent
 };
