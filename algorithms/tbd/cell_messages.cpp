@@ -294,16 +294,26 @@ void CellMessages::moments(const ParticleObject& object, Work& work, bool from_p
     const double* own = &work.own_factor[static_cast<std::size_t>(c) * p];
     double mass = absent;
     double sum_m = 0.0, sum_c = 0.0, sum_mm = 0.0;
+    if (mean_per_spread == 0.0) {  // μ_j ≡ 0 (D1): only the mass and E c
+#pragma omp simd reduction(+ : mass, sum_c)
+      for (int i = 0; i < p; ++i) {
+        const double weight = b[i] * own[i];
+        const double g = gx[i] * gy[i];
+        mass += weight;
+        sum_c += weight * ((variance1 + variance2 * g) * g);
+      }
+    } else {
 #pragma omp simd reduction(+ : mass, sum_m, sum_c, sum_mm)
-    for (int i = 0; i < p; ++i) {
-      const double weight = b[i] * own[i];
-      const double g = gx[i] * gy[i];
-      const double m = mean_per_spread * g;
-      const double variance = (variance1 + variance2 * g) * g;
-      mass += weight;
-      sum_m += weight * m;
-      sum_c += weight * variance;
-      sum_mm += weight * m * m;
+      for (int i = 0; i < p; ++i) {
+        const double weight = b[i] * own[i];
+        const double g = gx[i] * gy[i];
+        const double m = mean_per_spread * g;
+        const double variance = (variance1 + variance2 * g) * g;
+        mass += weight;
+        sum_m += weight * m;
+        sum_c += weight * variance;
+        sum_mm += weight * m * m;
+      }
     }
     // μ_j(x) = (m, 0): μ_{n,j} = (E m, 0), R_{n,j} = E[c] I + diag(E m², 0).
     CellTerms& t = work.terms[c];

