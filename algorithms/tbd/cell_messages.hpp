@@ -16,6 +16,13 @@
 // box; outside it μ_j(x) and C_j(x) are taken as zero (then the cell's κ̃ ratio is 1). With
 // the default radius of 4σ_h, g_j ≤ e^{−8} ≈ 3e-4 there (C_j ≤ 0.01 at γ = 60 against C_ε = 1).
 //
+// Speed: the passes are loops over a PO's particles per window cell, written to vectorise at
+// the baseline ISA (SSE2) without -ffast-math: e^x by portable_exp (harness/core), reductions
+// under `#pragma omp simd` (their order is fixed when compiling: no choice by CPU or thread
+// count, so results stay bit-identical across threads, processes and hosts), a kernel without
+// square roots where V and C_j are isotropic and μ_j ≡ 0 (D1), and one log per particle for
+// Σ_j log det ratios. Runtime: bench/tbd/bench_tbd.cpp.
+//
 // Variants (the same passes): `interaction = false` drops the Σ_{n'≠n} terms, so each PO sees
 // the cells alone (the non-interacting update of TBD-MB); `exact = true` replaces κ̃ by the
 // exact κ of the letter's eq (5), a sum over the other POs' particles and existence — only for
