@@ -114,6 +114,9 @@ bool CellMessages::run(const TbdSensor& sensor, double amplitude, const Eigen::M
   if (static_cast<int>(work_.size()) < count) work_.resize(count);
   for (int n = 0; n < count; ++n) prepare(*objects[n], work_[n]);
   if (options.exact) {
+    for (int n = 0; n < count; ++n) {  // κ^(0) ≡ 1: the first exact pass reads the others' own factors
+      std::fill_n(work_[n].own_factor.begin(), static_cast<std::size_t>(work_[n].window.cells()) * objects[n]->size(), 1.0);
+    }
     std::vector<int> reach(sensor.cells(), 0);
     for (int n = 0; n < count; ++n) {
       const CellWindow& w = work_[n].window;
@@ -261,8 +264,7 @@ void CellMessages::prepare(const ParticleObject& object, Work& work) const {
 
   tabulate_spread(object, work);
   const std::size_t pairs = static_cast<std::size_t>(w.cells()) * p;
-  grow_buffer(work.own_factor, pairs);
-  std::fill_n(work.own_factor.begin(), pairs, 1.0);  // κ^(0) ≡ 1
+  grow_buffer(work.own_factor, pairs);  // filled by the first pass (κ^(0) ≡ 1 before it: ones_)
   work.total.assign(p, 0.0);
   work.terms.assign(w.cells(), CellTerms{});
 }
@@ -273,10 +275,11 @@ void CellMessages::moments(const ParticleObject& object, Work& work, bool from_p
   const double r = object.existence;
   // β(x^(i), 1) ∝ w r Π_{j'≠j} κ̃ ratio = B_i · (κ̃(0)/κ̃(x^(i),1) at j), B_i = w r exp(Σ_j λ),
   // against β(0) ∝ 1 − r; one shift for every cell (the own-cell factor is bounded, header).
-  // From the prior, own ≡ 1 (κ^(0) ≡ 1: prepare()) and B_i = w r.
+  // From the prior, own ≡ 1 (κ^(0) ≡ 1) and B_i = w r.
   shifted_.resize(p);
   double shift = 0.0;
   if (from_prior) {
+    if (static_cast<int>(ones_.size()) < p) ones_.assign(p, 1.0);
     for (int i = 0; i < p; ++i) shifted_[i] = object.weight[i] * r;
   } else {
     shift = std::log1p(-r);
@@ -291,7 +294,7 @@ void CellMessages::moments(const ParticleObject& object, Work& work, bool from_p
   for (int c = 0; c < w.cells(); ++c) {
     const double* gx = &work.spread_x[static_cast<std::size_t>(c % w.columns()) * p];
     const double* gy = &work.spread_y[static_cast<std::size_t>(c / w.columns()) * p];
-    const double* own = &work.own_factor[static_cast<std::size_t>(c) * p];
+    const double* own = from_prior ? ones_.data() : &work.own_factor[static_cast<std::size_t>(c) * p];
     double mass = absent;
     double sum_m = 0.0, sum_c = 0.0, sum_mm = 0.0;
     if (mean_per_spread == 0.0) {  // μ_j ≡ 0 (D1): only the mass and E c

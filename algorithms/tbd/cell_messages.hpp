@@ -150,6 +150,7 @@ class CellMessages {
   bool outgoing_moments_ready_ = false;  // the last run() left β^(L+1) moments in its POs' terms
   std::vector<CellTotals> totals_;  // per cell of the frame: the Σ_n of eqs (5), (9)
   std::vector<double> shifted_;       // scratch: one PO's (log) weights
+  std::vector<double> ones_;          // own factors of κ^(0) ≡ 1 (moments from the prior)
   Work drawn_;                        // scratch: log_ratios_at()'s spread tables
   std::vector<double> work_product_;         // scratch: product of determinant ratios (mantissa)
   std::vector<std::int64_t> work_exponent_;  // scratch: its binary exponent
