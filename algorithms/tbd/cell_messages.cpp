@@ -1,11 +1,14 @@
 #include "algorithms/tbd/cell_messages.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
 #include "harness/core/grow_buffer.hpp"
+#include "harness/core/portable_exp.hpp"
 
 namespace dabench {
 
@@ -25,6 +28,64 @@ double log_sum_exp(const std::vector<double>& values, int count, double extra) {
 // log N(z; μ, s I₂) in R².
 double log_isotropic_normal(double dx, double dy, double s) {
   return -std::log(2.0 * std::numbers::pi * s) - 0.5 * (dx * dx + dy * dy) / s;
+}
+
+// μ_j(x) = (mean · g, 0), c_j(x) = variance · g + variance2 · g², g = g_j(x).
+struct SpreadCoefficients {
+  double mean, variance, variance2;
+};
+
+// One window cell's λ for every particle: the loops the passes spend their time in, written so
+// that they vectorise (no calls, no branches; portable_exp). Each adds −½(quad − quad0) to
+// total[i] and multiplies det/det0 into product[i]; with kOwn it also stores
+// own[i] = exp(−λ) = sqrt(det/det0) exp(½(quad − quad0)).
+template <bool kOwn>
+void cell_log_ratios(const CellMessages::CellTerms& t, const SpreadCoefficients& k, const double* gx, const double* gy,
+                     int p, double* total, double* product, double* own) {
+  const double e_x = t.e_x, e_y = t.e_y, v_xx = t.v_xx, v_yy = t.v_yy, v_xy = t.v_xy;
+  const double det0 = v_xx * v_yy - v_xy * v_xy;
+  const double half_quad0 = 0.5 * (e_x * e_x * v_yy - 2.0 * e_x * e_y * v_xy + e_y * e_y * v_xx) / det0;
+  const double inverse_det0 = 1.0 / det0;
+  const double cross = 2.0 * e_y * v_xy, e_yy = e_y * e_y, v_xy2 = v_xy * v_xy;
+  const double mean = k.mean, variance1 = k.variance, variance2 = k.variance2;
+#pragma omp simd
+  for (int i = 0; i < p; ++i) {
+    // κ̃(x, 1): mean + μ_j(x), covariance + c_j(x) I.
+    const double g = gx[i] * gy[i];
+    const double ex = e_x - mean * g;
+    const double extra = (variance1 + variance2 * g) * g;
+    const double a = v_xx + extra;
+    const double d = v_yy + extra;
+    const double det = a * d - v_xy2;
+    const double ratio = det * inverse_det0;
+    const double half_quad = 0.5 * (ex * ex * d - ex * cross + e_yy * a) / det - half_quad0;
+    if constexpr (kOwn) own[i] = std::sqrt(ratio) * portable_exp(half_quad);
+    product[i] *= ratio;
+    total[i] -= half_quad;
+  }
+}
+
+// The same where μ_j ≡ 0 and V = v I₂ (the fluctuating signal D1: then V stays isotropic, as
+// every C_j is): with s = (v + c_j(x))/v, det/det0 = s², quad = ‖e‖²/(v + c_j(x)), and
+// sqrt(det/det0) = s needs no square root.
+template <bool kOwn>
+void isotropic_cell_log_ratios(const CellMessages::CellTerms& t, const SpreadCoefficients& k, const double* gx,
+                               const double* gy, int p, double* total, double* product, double* own) {
+  const double v = t.v_xx;
+  const double half_ee = 0.5 * (t.e_x * t.e_x + t.e_y * t.e_y);
+  const double half_quad0 = half_ee / v;
+  const double inverse_v = 1.0 / v;
+  const double variance1 = k.variance, variance2 = k.variance2;
+#pragma omp simd
+  for (int i = 0; i < p; ++i) {
+    const double g = gx[i] * gy[i];
+    const double a = v + (variance1 + variance2 * g) * g;
+    const double s = a * inverse_v;
+    const double half_quad = half_ee / a - half_quad0;
+    if constexpr (kOwn) own[i] = s * portable_exp(half_quad);
+    product[i] *= s * s;
+    total[i] -= half_quad;
+  }
 }
 
 }  // namespace
@@ -47,11 +108,15 @@ bool CellMessages::run(const TbdSensor& sensor, double amplitude, const Eigen::M
                        const std::vector<ParticleObject*>& objects, const CellMessageOptions& options) {
   configure(sensor, amplitude, options.support_radius);
   frame_ = &frame;
+  outgoing_moments_ready_ = false;
   const int count = static_cast<int>(objects.size());
   objects_.assign(objects.begin(), objects.end());
   if (static_cast<int>(work_.size()) < count) work_.resize(count);
   for (int n = 0; n < count; ++n) prepare(*objects[n], work_[n]);
   if (options.exact) {
+    for (int n = 0; n < count; ++n) {  // κ^(0) ≡ 1: the first exact pass reads the others' own factors
+      std::fill_n(work_[n].own_factor.begin(), static_cast<std::size_t>(work_[n].window.cells()) * objects[n]->size(), 1.0);
+    }
     std::vector<int> reach(sensor.cells(), 0);
     for (int n = 0; n < count; ++n) {
       const CellWindow& w = work_[n].window;
@@ -81,6 +146,7 @@ bool CellMessages::run(const TbdSensor& sensor, double amplitude, const Eigen::M
       }
     }
     for (int n = 0; n < count; ++n) belief(*objects[n], work_[n]);
+    outgoing_moments_ready_ = true;  // each PO's last moments() followed its last λ: β^(L+1)
     return true;
   }
   const bool totals_needed = options.interaction || options.exact;
@@ -98,13 +164,14 @@ bool CellMessages::run(const TbdSensor& sensor, double amplitude, const Eigen::M
     }
   }
   for (int n = 0; n < count; ++n) belief(*objects[n], work_[n]);
+  outgoing_moments_ready_ = false;
   return true;
 }
 
 void CellMessages::outgoing_field() {
   std::fill(totals_.begin(), totals_.end(), CellTotals{});
   for (std::size_t n = 0; n < objects_.size(); ++n) {
-    moments(*objects_[n], work_[n], false);
+    if (!outgoing_moments_ready_) moments(*objects_[n], work_[n], false);
     accumulate(work_[n], 1.0);
   }
 }
@@ -146,6 +213,31 @@ void CellMessages::add_to_field(const ParticleObject& object, const Work& work) 
   }
 }
 
+// g_j(p) = exp(−(c_x − p_x)²/(2σ_h²)) · exp(−(c_y − p_y)²/(2σ_h²)), tabulated per axis over
+// work.window.
+void CellMessages::tabulate_spread(const ParticleObject& object, Work& work) const {
+  const TbdSensor& s = *sensor_;
+  const CellWindow& w = work.window;
+  const int p = object.size();
+  const double scale = -0.5 / s.spread_variance;
+  grow_buffer(work.spread_x, static_cast<std::size_t>(w.columns()) * p);
+  grow_buffer(work.spread_y, static_cast<std::size_t>(w.rows()) * p);
+  for (int c = 0; c < w.columns(); ++c) {
+    const double centre = s.centre_x(w.column_begin + c);
+    double* g = &work.spread_x[static_cast<std::size_t>(c) * p];
+    const double* x = object.x.data();
+#pragma omp simd
+    for (int i = 0; i < p; ++i) g[i] = portable_exp(scale * (centre - x[i]) * (centre - x[i]));
+  }
+  for (int r = 0; r < w.rows(); ++r) {
+    const double centre = s.centre_y(w.row_begin + r);
+    double* g = &work.spread_y[static_cast<std::size_t>(r) * p];
+    const double* y = object.y.data();
+#pragma omp simd
+    for (int i = 0; i < p; ++i) g[i] = portable_exp(scale * (centre - y[i]) * (centre - y[i]));
+  }
+}
+
 void CellMessages::prepare(const ParticleObject& object, Work& work) const {
   const TbdSensor& s = *sensor_;
   const int p = object.size();
@@ -170,23 +262,9 @@ void CellMessages::prepare(const ParticleObject& object, Work& work) const {
   w.row_end = std::max(w.row_begin, last(y_high, s.y_min, s.rows));
   if (p == 0) w.column_end = w.column_begin;
 
-  // g_j(p) = exp(−(c_x − p_x)²/(2σ_h²)) · exp(−(c_y − p_y)²/(2σ_h²)), tabulated per axis.
-  const double scale = -0.5 / s.spread_variance;
-  grow_buffer(work.spread_x, static_cast<std::size_t>(w.columns()) * p);
-  grow_buffer(work.spread_y, static_cast<std::size_t>(w.rows()) * p);
-  for (int c = 0; c < w.columns(); ++c) {
-    const double centre = s.centre_x(w.column_begin + c);
-    double* g = &work.spread_x[static_cast<std::size_t>(c) * p];
-    for (int i = 0; i < p; ++i) g[i] = std::exp(scale * (centre - object.x[i]) * (centre - object.x[i]));
-  }
-  for (int r = 0; r < w.rows(); ++r) {
-    const double centre = s.centre_y(w.row_begin + r);
-    double* g = &work.spread_y[static_cast<std::size_t>(r) * p];
-    for (int i = 0; i < p; ++i) g[i] = std::exp(scale * (centre - object.y[i]) * (centre - object.y[i]));
-  }
+  tabulate_spread(object, work);
   const std::size_t pairs = static_cast<std::size_t>(w.cells()) * p;
-  grow_buffer(work.own_factor, pairs);
-  std::fill_n(work.own_factor.begin(), pairs, 1.0);  // κ^(0) ≡ 1
+  grow_buffer(work.own_factor, pairs);  // filled by the first pass (κ^(0) ≡ 1 before it: ones_)
   work.total.assign(p, 0.0);
   work.terms.assign(w.cells(), CellTerms{});
 }
@@ -197,28 +275,48 @@ void CellMessages::moments(const ParticleObject& object, Work& work, bool from_p
   const double r = object.existence;
   // β(x^(i), 1) ∝ w r Π_{j'≠j} κ̃ ratio = B_i · (κ̃(0)/κ̃(x^(i),1) at j), B_i = w r exp(Σ_j λ),
   // against β(0) ∝ 1 − r; one shift for every cell (the own-cell factor is bounded, header).
-  double shift = std::log1p(-r);
-  if (!from_prior) {
-    shifted_.resize(p);
+  // From the prior, own ≡ 1 (κ^(0) ≡ 1) and B_i = w r.
+  shifted_.resize(p);
+  double shift = 0.0;
+  if (from_prior) {
+    if (static_cast<int>(ones_.size()) < p) ones_.assign(p, 1.0);
+    for (int i = 0; i < p; ++i) shifted_[i] = object.weight[i] * r;
+  } else {
+    shift = std::log1p(-r);
     for (int i = 0; i < p; ++i) shift = std::max(shift, shifted_[i] = std::log(object.weight[i] * r) + work.total[i]);
-    for (int i = 0; i < p; ++i) shifted_[i] = std::exp(shifted_[i] - shift);
+    double* b = shifted_.data();
+#pragma omp simd
+    for (int i = 0; i < p; ++i) b[i] = portable_exp(b[i] - shift);
   }
   const double absent = from_prior ? 1.0 - r : std::exp(std::log1p(-r) - shift);  // b^0, unnormalised
+  const double* b = shifted_.data();
+  const double mean_per_spread = mean_per_spread_, variance1 = variance_per_spread_, variance2 = variance_per_spread2_;
   for (int c = 0; c < w.cells(); ++c) {
     const double* gx = &work.spread_x[static_cast<std::size_t>(c % w.columns()) * p];
     const double* gy = &work.spread_y[static_cast<std::size_t>(c / w.columns()) * p];
-    const double* own = &work.own_factor[static_cast<std::size_t>(c) * p];
+    const double* own = from_prior ? ones_.data() : &work.own_factor[static_cast<std::size_t>(c) * p];
     double mass = absent;
     double sum_m = 0.0, sum_c = 0.0, sum_mm = 0.0;
-    for (int i = 0; i < p; ++i) {
-      const double b = from_prior ? object.weight[i] * r : shifted_[i] * own[i];
-      const double g = gx[i] * gy[i];
-      const double m = mean_per_spread_ * g;
-      const double variance = (variance_per_spread_ + variance_per_spread2_ * g) * g;
-      mass += b;
-      sum_m += b * m;
-      sum_c += b * variance;
-      sum_mm += b * m * m;
+    if (mean_per_spread == 0.0) {  // μ_j ≡ 0 (D1): only the mass and E c
+#pragma omp simd reduction(+ : mass, sum_c)
+      for (int i = 0; i < p; ++i) {
+        const double weight = b[i] * own[i];
+        const double g = gx[i] * gy[i];
+        mass += weight;
+        sum_c += weight * ((variance1 + variance2 * g) * g);
+      }
+    } else {
+#pragma omp simd reduction(+ : mass, sum_m, sum_c, sum_mm)
+      for (int i = 0; i < p; ++i) {
+        const double weight = b[i] * own[i];
+        const double g = gx[i] * gy[i];
+        const double m = mean_per_spread * g;
+        const double variance = (variance1 + variance2 * g) * g;
+        mass += weight;
+        sum_m += weight * m;
+        sum_c += weight * variance;
+        sum_mm += weight * m * m;
+      }
     }
     // μ_j(x) = (m, 0): μ_{n,j} = (E m, 0), R_{n,j} = E[c] I + diag(E m², 0).
     CellTerms& t = work.terms[c];
@@ -246,77 +344,71 @@ void CellMessages::accumulate(const Work& work, double sign) {
 void CellMessages::gaussian_log_ratios(const ParticleObject& object, Work& work, bool interaction, bool own_factors) {
   const TbdSensor& s = *sensor_;
   const CellWindow& w = work.window;
-  const int p = object.size();
-  std::fill(work.total.begin(), work.total.end(), 0.0);
-  // Σ_j λ = −½ Σ_j log(det_j/det0_j) − ½ Σ_j (quad_j − quad0_j): the determinant ratios are
-  // multiplied along a window row (each is at most (1 + c_max/σ²)², so a row cannot overflow)
-  // and their log taken once per row and particle.
-  work_product_.resize(p);
+  for (int c = 0; c < w.cells(); ++c) {
+    const int cell = (w.row_begin + c / w.columns()) * s.columns + w.column_begin + c % w.columns();
+    CellTerms& t = work.terms[c];
+    // κ̃(0): e = z − Σ_{n'≠n} μ_{n',j}, V = C_ε + Σ_{n'≠n} (R − μμᵀ)  (eqs 5, 9 with r_n = 0)
+    t.e_x = (*frame_)(0, cell);
+    t.e_y = (*frame_)(1, cell);
+    t.v_xx = t.v_yy = s.noise_variance;
+    t.v_xy = 0.0;
+    if (interaction) {
+      const CellTotals& total = totals_[cell];
+      t.e_x -= total.mean_x - t.mean_x;
+      t.e_y -= total.mean_y - t.mean_y;
+      t.v_xx += total.v_xx - (t.r_xx - t.mean_x * t.mean_x);
+      t.v_xy += total.v_xy - (t.r_xy - t.mean_x * t.mean_y);
+      t.v_yy += total.v_yy - (t.r_yy - t.mean_y * t.mean_y);
+    }
+  }
+  sum_log_ratios(work.terms, work, object.size(), work.total, own_factors ? work.own_factor.data() : nullptr);
+}
+
+void CellMessages::sum_log_ratios(const std::vector<CellTerms>& terms, const Work& spread, int p,
+                                  std::vector<double>& total, double* own_factor) {
+  const CellWindow& w = spread.window;
+  total.assign(p, 0.0);
+  // Σ_j λ = −½ Σ_j log(det_j/det0_j) − ½ Σ_j (quad_j − quad0_j). The determinant ratios (each
+  // in [1, (1 + c_max/σ²)²], so a window row cannot overflow) are multiplied over the whole
+  // window, the product's binary exponent moved into work_exponent_ after every row (exact), and
+  // one log taken per particle at the end.
+  work_product_.assign(p, 1.0);
+  work_exponent_.assign(p, 0);
+  const SpreadCoefficients coefficients{mean_per_spread_, variance_per_spread_, variance_per_spread2_};
+  double* sum = total.data();
+  double* product = work_product_.data();
+  std::int64_t* exponent = work_exponent_.data();
   for (int row = 0; row < w.rows(); ++row) {
-    std::fill(work_product_.begin(), work_product_.end(), 1.0);
     for (int column = 0; column < w.columns(); ++column) {
       const int c = row * w.columns() + column;
-      const int cell = (w.row_begin + row) * s.columns + w.column_begin + column;
-      CellTerms& t = work.terms[c];
-      // κ̃(0): e = z − Σ_{n'≠n} μ_{n',j}, V = C_ε + Σ_{n'≠n} (R − μμᵀ)  (eqs 5, 9 with r_n = 0)
-      t.e_x = (*frame_)(0, cell);
-      t.e_y = (*frame_)(1, cell);
-      t.v_xx = t.v_yy = s.noise_variance;
-      t.v_xy = 0.0;
-      if (interaction) {
-        const CellTotals& total = totals_[cell];
-        t.e_x -= total.mean_x - t.mean_x;
-        t.e_y -= total.mean_y - t.mean_y;
-        t.v_xx += total.v_xx - (t.r_xx - t.mean_x * t.mean_x);
-        t.v_xy += total.v_xy - (t.r_xy - t.mean_x * t.mean_y);
-        t.v_yy += total.v_yy - (t.r_yy - t.mean_y * t.mean_y);
-      }
-      const double det0 = t.v_xx * t.v_yy - t.v_xy * t.v_xy;
-      const double quad0 = (t.e_x * t.e_x * t.v_yy - 2.0 * t.e_x * t.e_y * t.v_xy + t.e_y * t.e_y * t.v_xx) / det0;
-      const double* gx = &work.spread_x[static_cast<std::size_t>(column) * p];
-      const double* gy = &work.spread_y[static_cast<std::size_t>(row) * p];
-      double* own = &work.own_factor[static_cast<std::size_t>(c) * p];
-      for (int i = 0; i < p; ++i) {
-        // κ̃(x, 1): mean + μ_j(x), covariance + c_j(x) I.
-        const double g = gx[i] * gy[i];
-        const double ex = t.e_x - mean_per_spread_ * g;
-        const double extra = (variance_per_spread_ + variance_per_spread2_ * g) * g;
-        const double a = t.v_xx + extra;
-        const double d = t.v_yy + extra;
-        const double det = a * d - t.v_xy * t.v_xy;
-        const double ratio = det / det0;
-        const double half_quad = 0.5 * ((ex * ex * d - 2.0 * ex * t.e_y * t.v_xy + t.e_y * t.e_y * a) / det - quad0);
-        // κ̃(0)/κ̃(x,1) = exp(−λ) = sqrt(det/det0) exp(½(quad − quad0))
-        if (own_factors) own[i] = std::sqrt(ratio) * std::exp(half_quad);
-        work_product_[i] *= ratio;
-        work.total[i] -= half_quad;
+      const CellTerms& t = terms[c];
+      const double* gx = &spread.spread_x[static_cast<std::size_t>(column) * p];
+      const double* gy = &spread.spread_y[static_cast<std::size_t>(row) * p];
+      double* own = own_factor != nullptr ? own_factor + static_cast<std::size_t>(c) * p : nullptr;
+      if (coefficients.mean == 0.0 && t.v_xy == 0.0 && t.v_xx == t.v_yy) {
+        (own ? isotropic_cell_log_ratios<true> : isotropic_cell_log_ratios<false>)(t, coefficients, gx, gy, p, sum,
+                                                                                    product, own);
+      } else {
+        (own ? cell_log_ratios<true> : cell_log_ratios<false>)(t, coefficients, gx, gy, p, sum, product, own);
       }
     }
-    for (int i = 0; i < p; ++i) work.total[i] -= 0.5 * std::log(work_product_[i]);
+    constexpr std::uint64_t kMantissa = (std::uint64_t{1} << 52) - 1, kOne = std::uint64_t{1023} << 52;
+#pragma omp simd
+    for (int i = 0; i < p; ++i) {  // product = m · 2^e, m ∈ [1, 2) (product ≈≥ 1: positive, normal)
+      const std::uint64_t bits = std::bit_cast<std::uint64_t>(product[i]);
+      exponent[i] += static_cast<std::int64_t>(bits >> 52) - 1023;
+      product[i] = std::bit_cast<double>((bits & kMantissa) | kOne);
+    }
+  }
+  for (int i = 0; i < p; ++i) {
+    sum[i] -= 0.5 * (std::log(product[i]) + std::numbers::ln2 * static_cast<double>(exponent[i]));
   }
 }
 
-double CellMessages::log_ratio_at(const Work& work, double px, double py) const {
-  const TbdSensor& s = *sensor_;
-  const CellWindow& w = work.window;
-  const double scale = -0.5 / s.spread_variance;
-  double sum = 0.0;
-  for (int c = 0; c < w.cells(); ++c) {
-    const CellTerms& t = work.terms[c];
-    const double dx = s.centre_x(w.column_begin + c % w.columns()) - px;
-    const double dy = s.centre_y(w.row_begin + c / w.columns()) - py;
-    const double g = std::exp(scale * (dx * dx + dy * dy));
-    const double det0 = t.v_xx * t.v_yy - t.v_xy * t.v_xy;
-    const double quad0 = (t.e_x * t.e_x * t.v_yy - 2.0 * t.e_x * t.e_y * t.v_xy + t.e_y * t.e_y * t.v_xx) / det0;
-    const double ex = t.e_x - mean_per_spread_ * g;
-    const double extra = (variance_per_spread_ + variance_per_spread2_ * g) * g;
-    const double a = t.v_xx + extra;
-    const double d = t.v_yy + extra;
-    const double det = a * d - t.v_xy * t.v_xy;
-    const double quad = (ex * ex * d - 2.0 * ex * t.e_y * t.v_xy + t.e_y * t.e_y * a) / det;
-    sum += -0.5 * std::log(det / det0) - 0.5 * (quad - quad0);
-  }
-  return sum;
+void CellMessages::log_ratios_at(const Work& work, const ParticleObject& object, std::vector<double>& out) {
+  drawn_.window = work.window;
+  tabulate_spread(object, drawn_);
+  sum_log_ratios(work.terms, drawn_, object.size(), out, nullptr);
 }
 
 bool CellMessages::exact_log_ratios(const std::vector<ParticleObject*>& objects) {

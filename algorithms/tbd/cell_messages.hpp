@@ -16,6 +16,13 @@
 // box; outside it μ_j(x) and C_j(x) are taken as zero (then the cell's κ̃ ratio is 1). With
 // the default radius of 4σ_h, g_j ≤ e^{−8} ≈ 3e-4 there (C_j ≤ 0.01 at γ = 60 against C_ε = 1).
 //
+// Speed: the passes are loops over a PO's particles per window cell, written to vectorise at
+// the baseline ISA (SSE2) without -ffast-math: e^x by portable_exp (harness/core), reductions
+// under `#pragma omp simd` (their order is fixed when compiling: no choice by CPU or thread
+// count, so results stay bit-identical across threads, processes and hosts), a kernel without
+// square roots where V and C_j are isotropic and μ_j ≡ 0 (D1), and one log per particle for
+// Σ_j log det ratios. Runtime: bench/tbd/bench_tbd.cpp.
+//
 // Variants (the same passes): `interaction = false` drops the Σ_{n'≠n} terms, so each PO sees
 // the cells alone (the non-interacting update of TBD-MB); `exact = true` replaces κ̃ by the
 // exact κ of the letter's eq (5), a sum over the other POs' particles and existence — only for
@@ -27,6 +34,7 @@
 // add_to_field() then adds an accepted new PO's belief, so the next new PO sees it (a serial
 // schedule over the new POs; see tbd_bp.hpp for why).
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -104,9 +112,10 @@ class CellMessages {
   double evaluate(const ParticleObject& object, Work& work, bool interaction);
   // Adds the belief of an evaluated PO (existence r̃ = logistic(work.log_odds)) to the field.
   void add_to_field(const ParticleObject& object, const Work& work);
-  // Σ_j λ_{n,j} at a position not among the particles of an evaluated PO, under the messages
-  // evaluate() used: for the particles drawn when a new PO becomes a legacy PO.
-  double log_ratio_at(const Work& work, double px, double py) const;
+  // out[i] = Σ_j λ_{n,j} at the positions of `object`'s particles (not those of the evaluated
+  // PO `work`), under the messages evaluate() used and over its window: for the particles drawn
+  // when a new PO becomes a legacy PO. `out` may be object.weight.
+  void log_ratios_at(const Work& work, const ParticleObject& object, std::vector<double>& out);
 
  private:
   struct CellTotals {
@@ -121,6 +130,13 @@ class CellMessages {
   // λ of every particle and window cell: Σ_j λ in work.total and, with own_factors, exp(−λ)
   // per pair (what the next β moments divide out).
   void gaussian_log_ratios(const ParticleObject& object, Work& work, bool interaction, bool own_factors);
+  // The passes' kernel: total[i] = Σ_j λ_j(x^(i)) over spread.window for the particles
+  // tabulated in `spread`, under the κ̃(0) parameters (e, V) of `terms`; with own_factor,
+  // exp(−λ) per [window cell][particle] too.
+  void sum_log_ratios(const std::vector<CellTerms>& terms, const Work& spread, int p, std::vector<double>& total,
+                      double* own_factor);
+  // work.spread_x, work.spread_y for `object`'s particles over work.window.
+  void tabulate_spread(const ParticleObject& object, Work& work) const;
   bool exact_log_ratios(const std::vector<ParticleObject*>& objects);
   void belief(const ParticleObject& object, Work& work);
 
@@ -131,9 +147,13 @@ class CellMessages {
   double mean_per_spread_ = 0.0, variance_per_spread_ = 0.0, variance_per_spread2_ = 0.0;
   std::vector<Work> work_;
   std::vector<const ParticleObject*> objects_;  // of the last run()
+  bool outgoing_moments_ready_ = false;  // the last run() left β^(L+1) moments in its POs' terms
   std::vector<CellTotals> totals_;  // per cell of the frame: the Σ_n of eqs (5), (9)
   std::vector<double> shifted_;       // scratch: one PO's (log) weights
-  std::vector<double> work_product_;  // scratch: determinant ratios along a window row
+  std::vector<double> ones_;          // own factors of κ^(0) ≡ 1 (moments from the prior)
+  Work drawn_;                        // scratch: log_ratios_at()'s spread tables
+  std::vector<double> work_product_;         // scratch: product of determinant ratios (mantissa)
+  std::vector<std::int64_t> work_exponent_;  // scratch: its binary exponent
 };
 
 }  // namespace dabench

@@ -101,7 +101,7 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
       legacy_.emplace_back();
       ParticleObject& o = legacy_.back();
       draw_in_cell(problem, b, p, rng_, o);
-      for (int i = 0; i < p; ++i) o.weight[i] = messages_.log_ratio_at(birth_work_[b], o.x[i], o.y[i]);
+      messages_.log_ratios_at(birth_work_[b], o, o.weight);
       settle_drawn(o, logistic(birth_work_[b].log_odds), next_label_++, rng_, scratch_);
       messages_.add_to_field(births_[b], birth_work_[b]);
       field_changed = true;
