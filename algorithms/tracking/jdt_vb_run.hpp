@@ -3,7 +3,7 @@
 //  - jdt_vb.cpp: options, the sequential pass (track management), the VB loop, the output;
 //  - jdt_vb_evidence.cpp: gates (eqs 33–35), the evidence χ of eq (43), ξ of eq (39);
 //  - jdt_vb_smoothing.cpp: Module 1 (synthetic measurements eq 36, smoothers, eq 32);
-//  - jdt_vb_free_energy.cpp: the free energy B and its per-track terms.
+//  - jdt_vb_free_energy.cpp: the free energy B from its terms (jdt_vb_free_energy_terms.hpp).
 // Not part of the public interface.
 #include <algorithm>
 #include <array>
@@ -35,8 +35,6 @@ double unit_ball_volume(int n);
 inline double log_det(const Eigen::LLT<Eigen::MatrixXd>& llt) {
   return 2.0 * llt.matrixLLT().diagonal().array().log().sum();
 }
-
-inline double xlogx(double p) { return p > 0.0 ? p * std::log(p) : 0.0; }
 
 // A target hypothesis: the sequential pass's live track, then a batch track over its span.
 struct TrackRecord {
