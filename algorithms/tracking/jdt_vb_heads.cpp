@@ -206,4 +206,16 @@ std::vector<TrackHead> form_track_heads(const Eigen::MatrixXd& scan, const std::
   return heads;
 }
 
+TrackHeadOptions ground_head_options(int state_dim, int measurement_dim, const Eigen::Vector3d& threshold,
+                                     double bearing_rate_sd, double gate, bool alternative_heads) {
+  TrackHeadOptions o;
+  o.threshold = Vector::Zero(measurement_dim);
+  o.threshold.head(3) = threshold;
+  o.prior_precision = Vector::Constant(state_dim, 1e-6);
+  if (state_dim == 4) o.prior_precision << 1e-6, 1.0, 1.0, 1.0 / (bearing_rate_sd * bearing_rate_sd);
+  o.gate = gate;
+  o.alternative_heads = alternative_heads;
+  return o;
+}
+
 }  // namespace dabench

@@ -48,6 +48,12 @@ struct TrackHeadOptions {
   bool alternative_heads = true;  // also a head per other path reading of the best's members
 };
 
+// The OTHR trackers' options: ρ = `threshold` on [r, ṙ, ζ] (0 on further components), Λ₀ weak
+// (1e-6: 1000 km, 1 km/s, 1 rad) on the observed ground components and 1/σ² on ϑ̇, σ =
+// `bearing_rate_sd`, for the ground state [g, ġ, ϑ, ϑ̇] (all 1e-6 for another state size).
+TrackHeadOptions ground_head_options(int state_dim, int measurement_dim, const Eigen::Vector3d& threshold,
+                                     double bearing_rate_sd, double gate, bool alternative_heads);
+
 // Heads from the columns `candidates` of `scan` (n_y × M).
 std::vector<TrackHead> form_track_heads(const Eigen::MatrixXd& scan, const std::vector<int>& candidates,
                                         const MultipathMeasurementModel& sensor, const TrackHeadOptions& options);

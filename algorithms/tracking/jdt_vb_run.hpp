@@ -91,14 +91,9 @@ class Run {
       const auto& scan = problem.scans[k];
       std::sort(order.begin(), order.end(), [&](int a, int b) { return scan(0, a) < scan(0, b) || (scan(0, a) == scan(0, b) && a < b); });
     }
-    const int n = sensor_.state_dim();
-    head_options_.threshold = Vector::Zero(sensor_.measurement_dim());
-    head_options_.threshold.head(3) << o_.head_range, o_.head_range_rate, o_.head_azimuth;
-    // Λ₀: weak on the observed components (1000 km, 1 km/s, 1 rad), the bearing-rate prior on ϑ̇.
-    head_options_.gate = gate_;
-    head_options_.alternative_heads = o_.alternative_heads;
-    head_options_.prior_precision = Vector::Constant(n, 1e-6);
-    if (n == 4) head_options_.prior_precision << 1e-6, 1.0, 1.0, 1.0 / (o_.head_bearing_rate_sd * o_.head_bearing_rate_sd);
+    head_options_ = ground_head_options(sensor_.state_dim(), sensor_.measurement_dim(),
+                                       {o_.head_range, o_.head_range_rate, o_.head_azimuth}, o_.head_bearing_rate_sd,
+                                       gate_, o_.alternative_heads);
     for (int tau = 0; tau < paths_; ++tau) noise_.emplace_back(sensor_.noise_covariance(tau));
     transition_ = problem.transition;
     process_ = Eigen::LLT<Eigen::MatrixXd>(problem.process_covariance);

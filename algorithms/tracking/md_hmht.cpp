@@ -82,14 +82,9 @@ class MdHmhtRun {
     const bool dense = problem.clutter_mean > 200.0;
     n_ = o_.hypotheses > 0 ? o_.hypotheses : (dense ? 2 : 3);
     miss_limit_ = o_.deletion_misses > 0 ? o_.deletion_misses : (dense ? 5 : 3);
-    const int n = problem.sensor->state_dim();
-    heads_.threshold = Vector::Zero(problem.sensor->measurement_dim());
-    heads_.threshold.head(3) << o_.head_range, o_.head_range_rate, o_.head_azimuth;
-    // Λ₀ as jdt-vb: weak on the observed components, the bearing-rate prior on ϑ̇.
-    heads_.prior_precision = Vector::Constant(n, 1e-6);
-    heads_.prior_precision << 1e-6, 1.0, 1.0, 1.0 / (o_.head_bearing_rate_sd * o_.head_bearing_rate_sd);
-    heads_.gate = chi_square_quantile(o_.gate_probability, problem.sensor->measurement_dim());
-    heads_.alternative_heads = o_.alternative_heads;
+    const int ny = problem.sensor->measurement_dim();
+    heads_ = ground_head_options(problem.sensor->state_dim(), ny, {o_.head_range, o_.head_range_rate, o_.head_azimuth},
+                                 o_.head_bearing_rate_sd, chi_square_quantile(o_.gate_probability, ny), o_.alternative_heads);
     hypotheses_.emplace_back();
   }
 
