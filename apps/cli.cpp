@@ -82,11 +82,13 @@ std::string program_usage() {
                 "SPEC is NAME or NAME:key=value,key=value (see `dabench list`).\n";
 }
 
-// "dabench 0.1.0 (git <commit>)", the commit left out when the build did not record one.
+// "dabench 0.1.0 (git <commit>)", with ", modified source" when the build's tree differed from
+// that commit; the commit left out when the build did not record one.
 std::string version_line() {
   const BuildInfo& build = build_info();
   if (build.git_commit.empty() || build.git_commit == "unknown") return fmt::format("dabench {}\n", build.version);
-  return fmt::format("dabench {} (git {})\n", build.version, build.git_commit);
+  const char* modified = build.source == Provenance::modified ? ", modified source" : "";
+  return fmt::format("dabench {} (git {}{})\n", build.version, build.git_commit, modified);
 }
 
 std::string joined_command_line(int argc, char** argv) {

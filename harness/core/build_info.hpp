@@ -5,9 +5,14 @@
 
 namespace dabench {
 
+// Whether the source tree the program was built from differed from its git commit (results/
+// and ignored build folders aside).
+enum class Provenance { clean, modified, unknown };
+
 struct BuildInfo {
   std::string_view version;     // the CMake project's VERSION, e.g. "0.1.0"
-  std::string_view git_commit;  // "unknown" outside a git checkout; "-dirty" suffix if modified
+  std::string_view git_commit;  // the full commit hash; "unknown" outside a git checkout
+  Provenance source;            // clean, modified, or unknown (no git)
   std::string_view compiler;
   std::string_view flags;
   std::string_view build_type;

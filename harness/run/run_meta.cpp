@@ -54,6 +54,9 @@ std::string run_meta_json(const RunPlan& plan, const RunRecord& record) {
       .add_raw("references", references)
       .add("version", build.version)
       .add("git_commit", build.git_commit)
+      .add_raw("source_modified", build.source == Provenance::unknown    ? "null"
+                                  : build.source == Provenance::modified ? "true"
+                                                                         : "false")
       .add("compiler", build.compiler)
       .add("flags", build.flags)
       .add("build_type", build.build_type)

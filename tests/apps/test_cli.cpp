@@ -834,7 +834,8 @@ TEST_CASE("cli --version: program name, project version and the build's git comm
   const std::string expected =
       build.git_commit == "unknown"
           ? fmt::format("dabench {}\n", DABENCH_PROJECT_VERSION)
-          : fmt::format("dabench {} (git {})\n", DABENCH_PROJECT_VERSION, build.git_commit);
+          : fmt::format("dabench {} (git {}{})\n", DABENCH_PROJECT_VERSION, build.git_commit,
+                        build.source == dabench::Provenance::modified ? ", modified source" : "");
   CHECK(result.out == expected);
   CHECK(snapshot(dir.work()).empty());
 }

@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "harness/core/build_info.hpp"
 #include "tests/support/cli_runner.hpp"
 
 using namespace dabench::test::cli;
@@ -291,6 +292,10 @@ TEST_CASE("run: meta.json records the run", "[run]") {
   CHECK(json_field(meta, "trials_per_point") == "3");
   CHECK(json_field(meta, "git_commit").size() > 2);
   CHECK(json_field(meta, "git_commit") != "<absent>");
+  const dabench::BuildInfo& build = dabench::build_info();
+  CHECK(json_field(meta, "source_modified") == (build.source == dabench::Provenance::unknown    ? "null"
+                                                : build.source == dabench::Provenance::modified ? "true"
+                                                                                                : "false"));
   CHECK(json_field(meta, "compiler").size() > 2);
   CHECK(json_field(meta, "compiler") != "<absent>");
   CHECK(json_field(meta, "command_line") != "<absent>");
