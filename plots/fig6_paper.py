@@ -163,12 +163,19 @@ class Panel:
             if a and a not in self.algorithms:
                 self.algorithms.append(a)
         self._dup_noted = set()
+        self._points = {}  # (spec, include_skipped) -> {x: row}: the rows never change, their values may
 
     def x_of(self, r):
         return self._x[id(r)]
 
     def points(self, spec, include_skipped=False):
         """{x: row} of one algorithm (first row per x), sorted by x."""
+        key = (spec, include_skipped)
+        if key not in self._points:
+            self._points[key] = self._find_points(spec, include_skipped)
+        return dict(self._points[key])
+
+    def _find_points(self, spec, include_skipped):
         pts = {}
         for r in self.all_rows if include_skipped else self.rows:
             if (r.get("algorithm") or "").strip() != spec:

@@ -37,13 +37,13 @@
 // the true position, last in the track, with prior ε·L(φ*)² (ε = probe_weight), and
 // density_scale N·g(x) for particles, N·g(x*)/ε for the probe (harness/multi_scan/particle_metrics.hpp).
 //
-// Default particle count: 10000. The posterior after the scans covers ~1 % of the initial
-// bearing line, so only that share of the particles carries its weight. Measured with
+// Default particle count: 10000. The posterior after the scans covers a small part of the
+// initial bearing line, so only that share of the particles carries its weight. Chosen with
 // experiments/multiscan-particles.ini (one target per trial, where jpda-bp is exact Bayes, so
-// HPD values must be Uniform(0, 1) up to particle error; 1000 trials, seed 7, KS 5 % critical
-// value 0.043), KS distance D for particles = 300 / 1000 / 3000 / 10000:
-//    4 scans: 0.116 / 0.051 / 0.030 / 0.034      12 scans: 0.204 / 0.080 / 0.048 / 0.025
-// 10000 is the smallest of these counts that passes in both settings. What it costs each method:
+// HPD values must be Uniform(0, 1) up to particle error; the KS distance of 300, 1000, 3000 and
+// 10000 particles against its 5 % critical value): 10000 is the smallest of these counts that
+// passes at 4 and at 12 scans (results/multiscan/REPORT.md, checks E1 and E2, computes this from
+// the committed run). What it costs each method:
 // bearings_trial in bench/multi_scan/bench_multi_scan.cpp, and the time_us columns of the runs
 // in results/multiscan/ (plots/multiscan_cost.py).
 //

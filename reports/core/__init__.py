@@ -1,0 +1,1 @@
+"""What every study's checks share: verdict rules, statistics, data access, formatting, templates."""

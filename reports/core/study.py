@@ -1,0 +1,224 @@
+"""A study: its runs (the commands that made the committed data), the steps that turn runs into
+figures and digests, and its checks, which fill the study's template.
+
+A study module defines STUDY = Study(...) with a `checks(report)` function; render.py calls it
+with a Report, which collects named values, tables and claims for the template."""
+
+import dataclasses
+import json
+import os
+import re
+import shlex
+from collections import Counter
+
+from . import data, markdown, verdicts
+
+
+@dataclasses.dataclass
+class Run:
+    """One committed run: the folder it wrote and the command that wrote it (from the repository
+    root). rerun.py runs the command; the provenance check compares it with meta.json. A run of
+    `dabench_bench` names its JSON file (`--benchmark_out`) instead of a folder; its provenance is
+    the JSON's context (git_commit, source_modified, command_line: bench/bench_main.cpp)."""
+    folder: str
+    command: str
+    note: str = ""  # what a reader should expect: its length, what it is for
+
+
+@dataclasses.dataclass
+class Step:
+    """A command run after the runs (a figure, a digest of a large file): rerun.py runs it."""
+    command: str
+    note: str = ""
+
+
+@dataclasses.dataclass
+class Claim:
+    """A statement checked against the data.
+
+    statement: the statement in words (the paper's, quoted or closely paraphrased, or ours);
+    source: where the paper makes it (e.g. "Table IV", "Sec. V-B"), or "ours";
+    paper / ours: the numbers on both sides as printed (text; "–" where there is none);
+    verdict: one of verdicts.VERDICTS; rule: how the verdict was decided, in one line;
+    details: the parts behind the verdict, listed under the rules (optional)."""
+    id: str
+    statement: str
+    source: str
+    paper: str
+    ours: str
+    verdict: str
+    rule: str
+    details: list = dataclasses.field(default_factory=list)
+
+
+@dataclasses.dataclass
+class Study:
+    name: str  # e.g. "jdtvb"
+    report: str  # the file rendered, e.g. "results/jdtvb/REPORT.md"
+    template: str  # e.g. "reports/templates/jdtvb.md"
+    runs: list
+    steps: list
+    checks: object  # function(Report) -> None
+    digest: object = None  # function(root) -> [files written]: digests of large per-trial files
+    lint: bool = True  # lint the template's prose for numbers (not for the README)
+
+
+class Report:
+    """What a study's checks produce for its template: values by name, and the claims."""
+
+    def __init__(self, study, root):
+        self.study, self.root = study, root
+        self.values = {}
+        self.claims = []
+
+    def value(self, name, text):
+        if name in self.values:
+            raise ValueError(f"{self.study.name}: value '{name}' set twice")
+        self.values[name] = text
+        return text
+
+    def claim(self, claim):
+        """Register a claim; its parts become values claim.ID.{verdict,paper,ours,statement}."""
+        if claim.verdict not in verdicts.VERDICTS:
+            raise ValueError(f"{claim.id}: unknown verdict {claim.verdict!r}")
+        self.claims.append(claim)
+        for part in ("verdict", "paper", "ours", "statement"):
+            self.value(f"claim.{claim.id}.{part}", getattr(claim, part))
+        return claim
+
+    def claims_table(self, ids, statement_header="statement"):
+        """The claims with these ids as a table: id, statement (source), paper, ours, verdict."""
+        by_id = {c.id: c for c in self.claims}
+        rows = []
+        for i in ids:
+            c = by_id[i]
+            rows.append([c.id, f"{c.statement} ({c.source})" if c.source != "ours" else c.statement,
+                         c.paper, c.ours, f"**{c.verdict}**"])
+        return markdown.table(["#", statement_header, "paper", "ours", "verdict"], rows)
+
+    def rules_list(self, ids):
+        """Each claim's rule, and its details as sub-items."""
+        by_id = {c.id: c for c in self.claims}
+        lines = []
+        for i in ids:
+            lines.append(f"- **{i}**: {by_id[i].rule}")
+            lines += [f"  - {d}" for d in by_id[i].details]
+        return "\n".join(lines)
+
+    def verdict_counts(self, ids=None):
+        chosen = [c for c in self.claims if ids is None or c.id in ids]
+        counts = Counter(c.verdict for c in chosen)
+        return ", ".join(f"{counts[v]} {v}" for v in verdicts.VERDICTS if counts[v])
+
+
+# ----------------------------------------------------------------------------- provenance
+
+COMMENT_LINE = re.compile(r"^\s*[#;]")
+
+
+def experiment_body(text):
+    """An experiment file without comments and blank lines: what decides the run."""
+    return [line.rstrip() for line in text.splitlines() if line.strip() and not COMMENT_LINE.match(line)]
+
+
+def command_words(command):
+    """The program's part of a command line as words: a launcher before it (`mpirun -np 2`,
+    `taskset -c 0`) dropped, quotes resolved as the shell does."""
+    words = shlex.split(command)
+    for i, w in enumerate(words):
+        if os.path.basename(w) in ("dabench", "dabench_bench"):
+            return words[i:]
+    return words
+
+
+def is_bench(run):
+    return run.folder.endswith(".json")
+
+
+def read_bench_context(root, relpath):
+    """The context of a committed Google Benchmark JSON (its provenance), or a DataError."""
+    try:
+        with open(os.path.join(root, relpath), encoding="utf-8") as f:
+            return json.load(f).get("context", {})
+    except OSError as error:
+        raise data.DataError(f"{relpath}: {error.strerror}") from None
+    except json.JSONDecodeError as error:
+        raise data.DataError(f"{relpath}: not JSON ({error.msg})") from None
+
+
+def bench_provenance(root, run):
+    """(context, problems) of a committed benchmark JSON, as provenance() for a run folder."""
+    try:
+        context = read_bench_context(root, run.folder)
+    except data.DataError as error:
+        return None, [str(error)]
+    problems = []
+    if context.get("source_modified") != "false":
+        problems.append(f"{run.folder}: made from a modified or unknown source tree (git_commit "
+                        f"{context.get('git_commit')}, source_modified {context.get('source_modified')}); "
+                        "rerun it from a clean commit")
+    if command_words(context.get("command_line", "")) != command_words(run.command):
+        problems.append(f"{run.folder}: made by `{context.get('command_line')}`, the study lists `{run.command}`")
+    return context, problems
+
+
+def provenance(root, run):
+    """(meta, problems) of a committed run: problems lists why the run cannot be traced to the
+    committed code and experiment (modified source, another command, an edited experiment)."""
+    if is_bench(run):
+        return bench_provenance(root, run)
+    problems = []
+    try:
+        meta = data.read_meta(root, run.folder)
+    except data.DataError as error:
+        return None, [str(error)]
+    commit = meta.get("git_commit", "")
+    modified = meta.get("source_modified")
+    if commit.endswith("-dirty") or modified is not False:
+        problems.append(f"{run.folder}: made from a modified source tree (git_commit {commit}, "
+                        f"source_modified {modified}); rerun it from a clean commit")
+    if meta.get("status") != "complete":
+        problems.append(f"{run.folder}: run not complete ({meta.get('status')})")
+    if command_words(meta.get("command_line", "")) != command_words(run.command):
+        problems.append(f"{run.folder}: made by `{meta.get('command_line')}`, the study lists `{run.command}`")
+    experiment = meta.get("experiment_path", "")
+    ini = os.path.join(root, experiment)
+    if os.path.exists(ini):
+        with open(ini, encoding="utf-8") as f:
+            if experiment_body(f.read()) != experiment_body(meta.get("experiment", "")):
+                problems.append(f"{run.folder}: {experiment} has changed since the run; rerun it")
+    else:
+        problems.append(f"{run.folder}: its experiment {experiment} is not in the tree")
+    return meta, problems
+
+
+def short_command(command):
+    return command.replace("./build/dabench_bench ", "dabench_bench ").replace("./build/dabench ", "dabench ")
+
+
+def runs_table(root, runs):
+    """Markdown table of the study's runs from their meta.json (or benchmark context), and the
+    provenance problems."""
+    rows, problems = [], []
+    for run in runs:
+        meta, found = provenance(root, run)
+        problems += found
+        if meta is None:
+            rows.append([f"`{run.folder}`", f"`{short_command(run.command)}`", "missing", "", "", ""])
+            continue
+        commit = meta.get("git_commit", "?")
+        if is_bench(run):
+            clean = meta.get("source_modified") == "false"
+            size = f"{meta.get('num_cpus', '?')} CPUs, one benchmark at a time"
+            finished, wall = (meta.get("date") or "")[:10], "–"
+        else:
+            clean = meta.get("source_modified") is False and not commit.endswith("-dirty")
+            size = (f"{meta.get('items_total', '?')} items, {meta.get('threads', '?')} threads"
+                    + (f" × {meta.get('processes')} processes" if meta.get("processes", 1) != 1 else ""))
+            finished = (meta.get("end_time") or "")[:10]
+            wall = markdown.duration(meta["wall_seconds"]) if meta.get("wall_seconds") is not None else "–"
+        state = "clean" if clean else "**modified**"
+        rows.append([f"`{run.folder}`", f"`{short_command(run.command)}`", size,
+                     f"`{commit[:10]}` ({state})", finished, wall])
+    table = markdown.table(["folder", "command", "size", "commit", "finished", "wall time"], rows)
+    return table, problems

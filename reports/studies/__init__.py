@@ -1,0 +1,1 @@
+"""One module per study: its runs, its figures, and the checks that fill its REPORT template."""

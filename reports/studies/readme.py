@@ -1,0 +1,158 @@
+"""The measured numbers of the top-level README: the quick start's BP error against the BP
+paper's statement, the cost of the multi-scan paper's Algorithm 2 against the column-dual Newton
+solver, and the Open MPI measurements (efficiency, the writer's capacity, and the core counts
+derived from them), each from committed runs."""
+
+import math
+
+from reports.core import data, markdown, verdicts
+from reports.core.study import Claim, Run, Step, Study
+
+QUICKSTART = "results/quickstart"
+CLUSTER = "results/cluster"
+ALGORITHM2 = "results/multiscan/algorithm2-cost"
+DERIVED_FROM = "results/multiscan/fig4"  # the study whose per-item cost the derived core count uses
+BP_PAPER_BOUND = 0.015  # bp-marginal-association Sec. V-B: "average errors of 0.015 or less in most cases"
+MPI = "mpirun --allow-run-as-root"
+PAIRS = ["a", "b"]
+
+RUNS = [Run(QUICKSTART, "./build/dabench run experiments/quickstart.ini --force", "the quick start's run")]
+RUNS += [
+    Run(f"{CLUSTER}/throughput-threads2",
+        "./build/dabench run experiments/bp-throughput.ini --threads 2 --force --out results/cluster/throughput-threads2"),
+    Run(f"{CLUSTER}/throughput-np2",
+        f"{MPI} -np 2 ./build/dabench run experiments/bp-throughput.ini --threads 1 --force "
+        "--out results/cluster/throughput-np2"),
+    Run(f"{CLUSTER}/throughput-np3",
+        f"{MPI} --oversubscribe -np 3 ./build/dabench run experiments/bp-throughput.ini --threads 1 --force "
+        "--out results/cluster/throughput-np3"),
+]
+for _pair in PAIRS:
+    RUNS += [
+        Run(f"{CLUSTER}/efficiency-threads2-{_pair}",
+            "./build/dabench run experiments/cluster-efficiency.ini --threads 2 --force "
+            f"--out results/cluster/efficiency-threads2-{_pair}"),
+        Run(f"{CLUSTER}/efficiency-np2-{_pair}",
+            f"{MPI} -np 2 ./build/dabench run experiments/cluster-efficiency.ini --threads 1 --force "
+            f"--out results/cluster/efficiency-np2-{_pair}"),
+    ]
+STEPS = [Step("/usr/bin/python3 plots/fig6.py results/quickstart/summary.csv --out results/quickstart/fig6.png "
+              "--title \"2x3 grid, Pd = 0.6, lambda_fa = 0.01, r = 1\"", "the README's figure")]
+TIMING_COLUMNS = ("time_us",)
+
+
+def quickstart(report):
+    """BP's average maximum error over the spacings (its largest mean, with its SE) against the
+    paper's "0.015 or less" for this panel (Sec. V-B); the run's wall time."""
+    rows = [r for r in data.read_rows(report.root, f"{QUICKSTART}/summary.csv") if r["algorithm"] == "bp"]
+    peak = max(rows, key=lambda r: data.num(r, "max_error_mean"))
+    m, se = data.num(peak, "max_error_mean"), data.num(peak, "max_error_se")
+    verdict = verdicts.compare_bound(m, se, BP_PAPER_BOUND, holds_below=True, slack=verdicts.half_unit("0.015"))
+    report.claim(Claim("Q1", "BP's average maximum error is 0.015 or less on the baseline panel", "Sec. V-B",
+                       "≤ 0.015", f"peak {markdown.pm(m, se)} at spacing {peak['spacing']}", verdict,
+                       "largest mean over the spacings against the bound, two standard errors and the paper's rounding"))
+    report.value("quickstart.peak", markdown.pm(m, se))
+    report.value("quickstart.peak_spacing", peak["spacing"])
+    meta = data.read_meta(report.root, QUICKSTART)
+    report.value("quickstart.wall", markdown.duration(meta["wall_seconds"]))
+    report.value("quickstart.threads", str(meta["threads"]))
+
+
+def algorithm2(report):
+    """The multi-scan paper's Algorithm 2 (cvs:solver=pdca) against the column-dual Newton solver on
+    the recorded trial (experiments/multiscan-algorithm2-cost.ini), when that run is committed."""
+    try:
+        rows = data.read_rows(report.root, f"{ALGORITHM2}/trials.csv")
+    except data.DataError:
+        report.value("algorithm2.sentence", "Algorithm 2's cost at the study's size is not recorded yet "
+                                             "(`experiments/multiscan-algorithm2-cost.ini`)")
+        return
+    by_solver = {("pdca" if "solver=pdca" in r["algorithm"] else "newton"): r for r in rows}
+    newton_s = data.num(by_solver["newton"], "time_us") / 1e6
+    pdca_s = data.num(by_solver["pdca"], "time_us") / 1e6
+    converged = data.num(by_solver["pdca"], "converged")
+    report.value("algorithm2.sentence",
+                 f"on the recorded 8-target, 12-scan, 10 000-particle trial it took {markdown.sig(newton_s, 2)} s and "
+                 f"Algorithm 2 {markdown.duration(pdca_s)}"
+                 + ("" if converged == 1 else ", stopping at its sweep cap")
+                 + " (`results/multiscan/algorithm2-cost`)")
+
+
+def summaries_equal_but_timing(root, a, b):
+    """Whether two runs' summary.csv agree in every column but the timing statistics."""
+    ra, rb = data.read_rows(root, f"{a}/summary.csv"), data.read_rows(root, f"{b}/summary.csv")
+    if len(ra) != len(rb):
+        return False
+    for x, y in zip(ra, rb):
+        for k in x:
+            if not k.startswith(TIMING_COLUMNS) and x[k] != y.get(k):
+                return False
+    return True
+
+
+def thousands(value, digits=3):
+    """value to `digits` significant digits with thin groups: 185626 -> "186 000"."""
+    return f"{float(f'{value:.{digits}g}'):,.0f}".replace(",", " ")
+
+
+def rows_per_second(meta):
+    """trials.csv rows written per second of the run's wall time."""
+    return meta["items_total"] * len(meta["algorithms"]) / meta["wall_seconds"]
+
+
+def cluster(report):
+    """Open MPI efficiency (wall time of 2 threads in one process over 2 ranks of 1 thread, pairs
+    run back to back) and the writer's rows per second; the derived number of cores one writer
+    keeps busy at the multi-scan study's cost per row (derived: not measured)."""
+    root = report.root
+    effs, same = [], True
+    for pair in PAIRS:
+        threads = data.read_meta(root, f"{CLUSTER}/efficiency-threads2-{pair}")
+        ranks = data.read_meta(root, f"{CLUSTER}/efficiency-np2-{pair}")
+        effs.append(threads["wall_seconds"] / ranks["wall_seconds"])
+        report.value(f"cluster.eff.{pair}", f"{markdown.fixed(ranks['wall_seconds'], 1)} s against "
+                                            f"{markdown.fixed(threads['wall_seconds'], 1)} s")
+        same &= summaries_equal_but_timing(root, f"{CLUSTER}/efficiency-threads2-{pair}", f"{CLUSTER}/efficiency-np2-{pair}")
+    report.value("cluster.efficiencies", " and ".join(markdown.fixed(e, 2) for e in effs))
+    report.value("cluster.same", "identical" if same else "**not** identical")
+    rates = {}
+    for name in ("threads2", "np2", "np3"):
+        meta = data.read_meta(root, f"{CLUSTER}/throughput-{name}")
+        rates[name] = rows_per_second(meta)
+        report.value(f"cluster.rate.{name}", thousands(rates[name]))
+    capacity = min(rates["np2"], rates["np3"])  # what rank 0 sustains while it also computes
+    report.value("cluster.capacity", thousands(capacity))
+    meta = data.read_meta(root, "results/cluster/throughput-threads2")
+    report.value("cluster.items", f"{meta['items_total']:,}".replace(",", " "))
+    # Derived: a multi-scan item (one trial, every algorithm) costs its algorithms' summed time
+    # and writes its trials.csv and targets.csv rows; one writer at `capacity` rows/s keeps
+    # capacity / rows-per-item items per second in flight, i.e. that many times seconds-per-item cores.
+    fig4 = data.read_rows(root, f"{DERIVED_FROM}/trials.csv")
+    targets = data.read_rows(root, f"{DERIVED_FROM}/targets.csv")
+    items = len({(r["point"], r["trial"]) for r in fig4})
+    seconds_per_item = math.fsum(data.num(r, "time_us") for r in fig4) / 1e6 / items
+    rows_per_item = (len(fig4) + len(targets)) / items
+    cores = capacity / rows_per_item * seconds_per_item
+    report.value("cluster.derived.seconds", markdown.sig(seconds_per_item, 2))
+    report.value("cluster.derived.rows", markdown.sig(rows_per_item, 2))
+    report.value("cluster.derived.cores", thousands(cores, 1))
+
+
+def study_wall_times(report):
+    """Wall time of the committed runs the README's experiment table mentions (from meta.json)."""
+    for name, folder in (("jdtvb_table4", "results/jdtvb/table4"), ("multiscan", None)):
+        if folder:
+            report.value(f"wall.{name}", markdown.duration(data.read_meta(report.root, folder)["wall_seconds"]))
+    total = sum(data.read_meta(report.root, f"results/multiscan/{f}")["wall_seconds"] for f in ("fig3", "fig4", "fig5"))
+    report.value("wall.multiscan", markdown.duration(total))
+
+
+def checks(report):
+    quickstart(report)
+    algorithm2(report)
+    cluster(report)
+    study_wall_times(report)
+
+
+STUDY = Study(name="readme", report="README.md", template="reports/templates/README.md", runs=RUNS, steps=STEPS,
+              checks=checks, lint=False)

@@ -1,0 +1,124 @@
+"""The multiscan study's checks: its paired trial resamples are core.stats' bootstrap, a tampered
+copy of the committed data changes the verdict it feeds, and the Algorithm 2 cost run is reported
+once it is committed ("not run" before)."""
+
+import csv
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+from reports.core import stats
+from reports.studies import multiscan
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+RENDER = os.path.join(REPO, "reports", "render.py")
+REPORT = "results/multiscan/REPORT.md"
+
+
+class PairedResamples(unittest.TestCase):
+    def test_trial_resamples_are_the_core_bootstrap(self):
+        """trial_resamples draws what core.stats.cluster_bootstrap draws: the same p80 and SE."""
+        rng = np.random.Generator(np.random.PCG64(5))
+        trial = np.sort(rng.integers(0, 60, 400))
+        values = rng.random(400)
+        point, draws = multiscan.trial_resamples(trial, values[:, None], lambda c: np.percentile(c, 80, axis=0))
+        groups = [values[trial == t] for t in np.unique(trial)]
+        value, se, _ = stats.bootstrap_se(groups, lambda v: np.percentile(v, 80))
+        self.assertAlmostEqual(point[0], value, places=14)
+        self.assertAlmostEqual(float(np.std(draws[:, 0], ddof=1)), se, places=14)
+
+
+def rewrite_csv(path, change):
+    """Rewrite a CSV with change(row) applied to each row (a dict of strings)."""
+    with open(path, newline="", encoding="utf-8") as f:
+        reader = csv.DictReader(f)
+        header, rows = reader.fieldnames, list(reader)
+    for row in rows:
+        change(row)
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        writer = csv.DictWriter(f, header, lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)
+
+
+class CopyOfTheData(unittest.TestCase):
+    def setUp(self):
+        self.root = tempfile.mkdtemp(prefix="reports-multiscan-")
+        shutil.copytree(os.path.join(REPO, "results", "multiscan"), os.path.join(self.root, "results", "multiscan"))
+        shutil.copytree(os.path.join(REPO, "experiments"), os.path.join(self.root, "experiments"))
+        shutil.rmtree(self.data("algorithm2-cost"), ignore_errors=True)  # the tests make their own
+
+    def tearDown(self):
+        shutil.rmtree(self.root)
+
+    def render(self):
+        done = subprocess.run([sys.executable, RENDER, "--root", self.root, "multiscan"], capture_output=True, text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with open(os.path.join(self.root, REPORT), encoding="utf-8") as f:
+            return f.read()
+
+    def verdict(self, text, claim_id):
+        match = re.search(rf"^\| {re.escape(claim_id)} \|.*\| \*\*([a-z ]+)\*\* \|$", text, re.M)
+        self.assertIsNotNone(match, f"claim {claim_id} not in the REPORT")
+        return match.group(1)
+
+    def data(self, *parts):
+        return os.path.join(self.root, "results", "multiscan", *parts)
+
+    def test_one_residual_above_tolerance_changes_o1(self):
+        text = self.render()
+        self.assertEqual(self.verdict(text, "O1"), "agrees")
+        self.assertIn("not run: `results/multiscan/algorithm2-cost`", text)
+        first = {}
+
+        def one_residual(row):
+            if row["algorithm"] == "cvh" and not first:
+                first["done"] = row["residual"] = "2e-12"
+        rewrite_csv(self.data("fig5", "trials.csv"), one_residual)
+        self.assertEqual(self.verdict(self.render(), "O1"), "differs")
+
+    def test_an_msbp_without_tail_changes_p4(self):
+        """MSBP's HPD values moved out of the tail: no share >= 0.9999, against the paper's 12 %."""
+        def out_of_tail(row):
+            if row["algorithm"] == "msbp":
+                row["hpd"] = "0.5"
+        rewrite_csv(self.data("fig4", "targets.csv"), out_of_tail)
+        self.assertEqual(self.verdict(self.render(), "P4"), "differs")
+
+    def test_algorithm2_cost_is_reported_once_committed(self):
+        """Both solvers' times and their largest HPD difference (absent: "not run", tested above)."""
+        folder = self.data("algorithm2-cost")
+        os.makedirs(folder)
+        for name in ("trials.csv", "targets.csv"):
+            with open(self.data("fig4", name), newline="", encoding="utf-8") as f:
+                reader = csv.DictReader(f)
+                header = reader.fieldnames
+                rows = [r for r in reader if r["trial"] == "0" and r["algorithm"] == "cvs:gamma=0.95"]
+            out = []
+            for solver, time_us, iterations, shift in ((multiscan.NEWTON, "1000000", "60", 0.0),
+                                                       (multiscan.ALGORITHM2, "3600000000", "50000", 1e-7)):
+                for r in rows:
+                    r = dict(r, algorithm=solver)
+                    if name == "trials.csv":
+                        r.update(time_us=time_us, iterations=iterations)
+                    else:
+                        r["hpd"] = repr(float(r["hpd"]) + shift)
+                    out.append(r)
+            with open(os.path.join(folder, name), "w", newline="", encoding="utf-8") as f:
+                writer = csv.DictWriter(f, header, lineterminator="\n")
+                writer.writeheader()
+                writer.writerows(out)
+        text = self.render()
+        self.assertIn("| Algorithm 2 (`solver=pdca`) |", text)
+        self.assertIn("Algorithm 2 took 3600 times as long as the Newton solver", text)
+        self.assertIn("the largest difference of their HPD values over the trial's targets is 1.0e-07", text)
+
+
+if __name__ == "__main__":
+    unittest.main()
