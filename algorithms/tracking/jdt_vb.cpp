@@ -19,7 +19,8 @@ void JdtVbOptions::bind(ParamList& p) {
   p.add("confirm", confirm, "delta_s: confirmation and deletion threshold on q(s=1), in (0, 1)");
   p.add("stay", stay, "p(s_k = s_k-1) of the meta-state chain, in (0, 1)");
   p.add("dormant_pd", dormant_pd, "detection probability of a dormant target (s = 0), in (0, 1)");
-  p.add("delete_on_mean", delete_on_mean, "1: delete on the mean q(s=1) of three scans < delta_s (the text); 0: on all three < delta_s");
+  p.add("delete_on_mean", delete_on_mean,
+        "deletion reading of Sec. III-E: 1 = the mean q(s=1) of three scans < delta_s; 0 = q(s=1) < delta_s at each of three scans");
   p.add("gate_probability", gate_probability, "p_g of the gates (eq 33), in (0, 1)");
   p.add("head_range", head_range, "track-head threshold on slant range, km, > 0");
   p.add("head_range_rate", head_range_rate, "track-head threshold on slant range rate, km/s, > 0");
@@ -28,8 +29,9 @@ void JdtVbOptions::bind(ParamList& p) {
   p.add("joint_fusion", joint_fusion, "Module 1: 0 = per-path smoothers fused by eq (32), 1 = one smoother on all paths");
   p.add("alternative_heads", alternative_heads,
         "1: a head for every equally good path reading of a new return group (not in the paper); 0: only the best");
-  p.add("literal", literal,
-        "1: the paper-literal set, overriding joint_fusion = 0 (eq 32), delete_on_mean = 1, alternative_heads = 0");
+  p.add_choice("report_from", report_from, {"confirmation", "head"},
+               "a confirmed track is output from its first scan with q(s=1) >= delta_s, or from its head scan");
+  p.add("literal", literal, "1: the paper-literal set, overriding joint_fusion = 0 (eq 32) and alternative_heads = 0");
   p.add("lbp_tolerance", association.tolerance, "Module 3: stop LBP when no message changes more (log units)");
   p.add("lbp_iterations", association.max_iterations, "Module 3: LBP iteration cap");
 }
@@ -45,6 +47,8 @@ std::string JdtVbOptions::validate() const {
   for (auto [name, v] : {std::pair{"head_range", head_range}, {"head_range_rate", head_range_rate},
                          {"head_azimuth", head_azimuth}, {"head_bearing_rate_sd", head_bearing_rate_sd}})
     if (!(v > 0.0 && std::isfinite(v))) return fmt::format("{} = {} must be finite and > 0", name, v);
+  if (report_from != kFromConfirmation && report_from != kFromHead)
+    return fmt::format("report_from = {} must be 0 (confirmation) or 1 (head)", report_from);
   return association.validate();
 }
 
@@ -52,7 +56,6 @@ JdtVbOptions JdtVbOptions::resolved() const {
   JdtVbOptions o = *this;
   if (literal) {
     o.joint_fusion = false;
-    o.delete_on_mean = true;
     o.alternative_heads = false;
   }
   return o;
@@ -218,7 +221,8 @@ void Run::output(TrackSet& out) const {
         to = k;
       }
     const bool confirmed = from >= 0;
-    if (!confirmed) from = 0, to = t.length() - 1;
+    if (!confirmed || o_.report_from == JdtVbOptions::kFromHead) from = 0;
+    if (!confirmed) to = t.length() - 1;
     Track track;
     track.id = t.id;
     track.first_scan = t.first + from;

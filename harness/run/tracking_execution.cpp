@@ -62,9 +62,9 @@ const TrackingTruth& scoring_truth(const TrackingTruth& truth, int scans, Tracki
 
 std::string tracking_metrics_json(const TrackingMetricsOptions& options) {
   return fmt::format(R"({{"min_track_length": {}, "gate_km": {}, "min_follow_fraction": {}, "ospa_cutoff_km": {}, )"
-                     R"("ospa_order": {}}})",
+                     R"("ospa_order": {}, "aee_assigned": {}}})",
                      options.min_track_length, options.gate_km, options.min_follow_fraction, options.ospa_cutoff_km,
-                     options.ospa_order);
+                     options.ospa_order, options.aee_assigned);
 }
 
 TrackingExecution::TrackingExecution(const RunPlan& plan, std::vector<std::unique_ptr<TrackingScenario>> scenarios,

@@ -54,6 +54,8 @@ void TrackingMetricsOptions::bind(ParamList& p) {
   p.add("min_follow_fraction", min_follow_fraction, "share of a track's scans it must follow its target, else false, in (0, 1]");
   p.add("ospa_cutoff_km", ospa_cutoff_km, "OSPA cut-off c, km (not in the paper)");
   p.add("ospa_order", ospa_order, "OSPA order p (not in the paper), >= 1");
+  p.add("aee_assigned", aee_assigned,
+        "AEE pairs: 0 = scans a labelled track follows its target (within the gate); 1 = every scan it shares with it");
 }
 
 std::string TrackingMetricsOptions::validate() const {
@@ -186,18 +188,25 @@ TrackingMetrics compute_tracking_metrics(const TrackingTruth& truth, const Track
       if (!target.alive[k]) continue;
       ++alive_scans;
       if (first_alive < 0) first_alive = k;
-      int nearest = -1;
-      double nearest_distance = 0.0;
+      // The nearest labelled track that follows the target at k (TPD, TTL, AEE), and the
+      // nearest that merely exists at k (AEE with aee_assigned).
+      int nearest = -1, nearest_assigned = -1;
+      double nearest_distance = 0.0, nearest_assigned_distance = 0.0;
       for (int t : labelled[i]) {
         const Track& track = *eligible[t];
-        if (k < track.first_scan || k > last_scan(track) || !follow[t][i].follows[k - track.first_scan]) continue;
+        if (k < track.first_scan || k > last_scan(track)) continue;
         const double d = (track_point(t, k) - target_point(i, k)).norm();
+        if (nearest_assigned < 0 || d < nearest_assigned_distance) nearest_assigned = t, nearest_assigned_distance = d;
+        if (!follow[t][i].follows[k - track.first_scan]) continue;
         if (nearest < 0 || d < nearest_distance) nearest = t, nearest_distance = d;
       }
-      if (nearest < 0) continue;
-      ++covered_scans;
-      if (first_covered < 0) first_covered = k;
-      const auto estimate = eligible[nearest]->states.col(k - eligible[nearest]->first_scan);
+      if (nearest >= 0) {
+        ++covered_scans;
+        if (first_covered < 0) first_covered = k;
+      }
+      const int scored = options.aee_assigned ? nearest_assigned : nearest;
+      if (scored < 0) continue;
+      const auto estimate = eligible[scored]->states.col(k - eligible[scored]->first_scan);
       range_error_sum += std::abs(estimate(0) - target.states(0, k));
       bearing_error_sum += std::abs(estimate(2) - target.states(2, k));
       ++error_pairs;

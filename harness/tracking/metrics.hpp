@@ -29,7 +29,11 @@
 //  - TTL: mean over targets followed at least once of (first followed scan − first alive
 //    scan), in scans; NaN when no target is followed.
 //  - AEE-R, AEE-B: mean |ĝ − g| (km) and |ϑ̂ − ϑ| (rad) over the (target, scan) pairs at which
-//    a labelled track follows the target, using the nearest such track; NaN when none.
+//    a labelled track follows the target (within the gate), using the nearest such track; NaN
+//    when none. With `aee_assigned`, over every (target, scan) pair at which a track labelled
+//    with the target exists, followed or not (the nearest such track): the errors of a track's
+//    excursions beyond the gate count too (Gorji's AEE averages over assigned pairs; the
+//    paper does not say which).
 //  - MOSPA: mean over all K scans of OSPA (Schuhmacher, Vo & Vo 2008, eq 3) between the alive
 //    targets' and the eligible tracks' ground-plane points (false and ghost tracks included),
 //    order p, cut-off c (km).
@@ -50,6 +54,7 @@ struct TrackingMetricsOptions {
   double min_follow_fraction = 0.5;   // share of a track's scans on its target (not in the paper)
   double ospa_cutoff_km = 50.0;       // OSPA c (the paper gives none)
   double ospa_order = 2.0;            // OSPA p (the paper gives none)
+  bool aee_assigned = false;          // AEE over every scan a labelled track shares with its target, not only followed ones
 
   void bind(ParamList& p);
   std::string validate() const;  // "" if valid; else why (a non-positive length, gate or cut-off, ...)

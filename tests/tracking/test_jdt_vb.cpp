@@ -3,11 +3,14 @@
 // the free energy's monotonicity per VB iteration, tracking quality against the truth, options.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
 #include "algorithms/tracking/jdt_vb.hpp"
 #include "algorithms/tracking/jdt_vb_heads.hpp"
+#include "algorithms/tracking/meta_state_chain.hpp"
 #include "harness/core/errors.hpp"
 #include "harness/core/random_stream.hpp"
 #include "harness/tracking/metrics.hpp"
@@ -130,21 +133,25 @@ TEST_CASE("jdt-vb heads: alternative_heads = 0 starts only the best reading of a
   CHECK(with[0].mean == without[0].mean);
 }
 
-TEST_CASE("jdt-vb: literal = 1 is eq (32) fusion, the literal deletion rule and no alternative heads", "[jdt_vb]") {
+TEST_CASE("jdt-vb: literal = 1 is eq (32) fusion and no alternative heads; the deletion reading stays its own key",
+          "[jdt_vb]") {
   dabench::JdtVbOptions literal;
   literal.literal = true;
   const dabench::JdtVbOptions resolved = literal.resolved();
   CHECK_FALSE(resolved.joint_fusion);
-  CHECK(resolved.delete_on_mean);
   CHECK_FALSE(resolved.alternative_heads);
+  CHECK_FALSE(resolved.delete_on_mean);  // each of three scans: the reading the paper's numbers allow
+  literal.delete_on_mean = true;
+  CHECK(literal.resolved().delete_on_mean);  // the mean reading, when asked for
   CHECK(resolved.confirm == literal.confirm);  // the rest is untouched
   CHECK(dabench::JdtVbOptions{}.resolved().joint_fusion);  // without literal nothing changes
-  // literal = 1 overrides the three keys even when they are given, and runs exactly the
+  // literal = 1 overrides its two keys even when they are given, and runs exactly the
   // spelled-out configuration; that differs from the default on this draw.
   const auto sample = draw(0.75, 125.0, 1);
   std::vector<dabench::TrackSet> runs;
-  for (const char* spec : {"jdt-vb:literal=1,joint_fusion=1", "jdt-vb:joint_fusion=0,delete_on_mean=1,alternative_heads=0",
-                           "jdt-vb", "jdt-vb:alternative_heads=0"}) {
+  for (const char* spec : {"jdt-vb:literal=1,joint_fusion=1", "jdt-vb:joint_fusion=0,alternative_heads=0", "jdt-vb",
+                           "jdt-vb:alternative_heads=0", "jdt-vb:literal=1,delete_on_mean=1",
+                           "jdt-vb:joint_fusion=0,alternative_heads=0,delete_on_mean=1"}) {
     auto tracker = dabench::make_tracker(spec);
     dabench::SolveReport report;
     tracker->run(sample.problem, runs.emplace_back(), report);
@@ -157,8 +164,90 @@ TEST_CASE("jdt-vb: literal = 1 is eq (32) fusion, the literal deletion rule and 
     return true;
   };
   CHECK(same(runs[0], runs[1]));
+  CHECK(same(runs[4], runs[5]));
   CHECK_FALSE(same(runs[0], runs[2]));
   CHECK_FALSE(same(runs[2], runs[3]));  // alternative heads alone change the tracks
+}
+
+namespace {
+
+// Confirmed tracks of `spec` on the problem that cover scans first..last without a break.
+int tracks_spanning(const char* spec, const dabench::TrackingProblem& problem, int first, int last) {
+  auto tracker = dabench::make_tracker(spec);
+  dabench::TrackSet tracks;
+  dabench::SolveReport report;
+  tracker->run(problem, tracks, report);
+  REQUIRE(report.skipped.empty());
+  return static_cast<int>(std::count_if(tracks.tracks.begin(), tracks.tracks.end(), [&](const dabench::Track& t) {
+    return t.confirmed && t.first_scan <= first && t.first_scan + t.length() - 1 >= last;
+  }));
+}
+
+}  // namespace
+
+TEST_CASE("jdt-vb deletion: a scan without any return deletes a track under the mean reading only", "[jdt_vb]") {
+  // After a scan whose returns are all missed, q(s = 1) is the filter step from q = 1 with the
+  // no-detection evidence of eq (39) on every path: at p_d = 0.4 (p_g = 0.971, dormant p_d
+  // 0.01) it is 0.85 r / (0.85 r + 0.15), r = ((1 − 0.4 p_g) / (1 − 0.01))^4 — about 0.45, so
+  // the mean of three scans' q is at most (1 + 1 + 0.45) / 3 < δ_s = 0.85.
+  const double pd = 0.4 * 0.971, dormant = 0.01;
+  const std::array<double, 2> missed{4.0 * std::log1p(-dormant), 4.0 * std::log1p(-pd)};
+  const double q = dabench::meta_state_filter_step(1.0, 0.85, missed);
+  const double r = std::pow((1.0 - pd) / (1.0 - dormant), 4);
+  CHECK(q == Approx(0.85 * r / (0.85 * r + 0.15)).epsilon(1e-12));
+  CHECK(q == Approx(0.452).margin(0.001));
+  CHECK((1.0 + 1.0 + q) / 3.0 < 0.85);
+
+  // Four targets, every path detecting, no clutter: blank 1, 2 or 3 scans in the middle of the
+  // run. A target alive across the blanks keeps one track under the each-of-three reading as
+  // long as one of any three successive scans has returns; the mean reading ends it at the
+  // first blank (and a new head starts after the blanks).
+  const auto sample = draw(1.0, 0.0, 0);
+  const int blank = 14, scans = sample.problem.scan_count();
+  for (int blanks = 1; blanks <= 3; ++blanks) {
+    const int before = blank - 1, after = blank + blanks;
+    REQUIRE(after < scans);
+    int across = 0;
+    for (const auto& target : sample.truth.targets)
+      if (target.alive[before] && target.alive[after]) ++across;
+    REQUIRE(across >= 2);
+    dabench::TrackingProblem problem = sample.problem;
+    for (int k = blank; k < blank + blanks; ++k) problem.scans[k] = Eigen::MatrixXd(3, 0);
+    INFO(blanks << " blank scans, " << across << " targets alive across them");
+    CHECK(tracks_spanning("jdt-vb", problem, before, after) == (blanks < 3 ? across : 0));
+    CHECK(tracks_spanning("jdt-vb:delete_on_mean=1", problem, before, after) == 0);
+    // Without blanks both readings keep every such target on one track.
+    CHECK(tracks_spanning("jdt-vb:delete_on_mean=1", sample.problem, before, after) == across);
+  }
+}
+
+TEST_CASE("jdt-vb: report_from = head outputs a confirmed track from its head scan", "[jdt_vb]") {
+  // A head of two returns starts with p(s = 1) = (2/4)² = 0.25; after the batch iterations the
+  // smoothed q(s = 1) of its first scans is usually ≥ δ_s already, but not always. With
+  // report_from = head a confirmed track's first output scan is its head's; the tracks are the
+  // same otherwise.
+  int earlier = 0;
+  for (int run = 0; run < 10; ++run) {
+    const auto sample = draw(0.4, 125.0, run);
+    dabench::TrackSet from_confirmation, from_head;
+    dabench::SolveReport report;
+    dabench::make_tracker("jdt-vb")->run(sample.problem, from_confirmation, report);
+    dabench::make_tracker("jdt-vb:report_from=head")->run(sample.problem, from_head, report);
+    REQUIRE(from_head.tracks.size() == from_confirmation.tracks.size());
+    for (std::size_t t = 0; t < from_head.tracks.size(); ++t) {
+      const auto& a = from_confirmation.tracks[t];
+      const auto& b = from_head.tracks[t];
+      REQUIRE(a.id == b.id);
+      CHECK(b.first_scan <= a.first_scan);
+      CHECK(b.first_scan + b.length() == a.first_scan + a.length());  // the same last scan
+      CHECK(b.states.rightCols(a.length()) == a.states);  // the same smoothed states where both exist
+      if (b.first_scan < a.first_scan) {
+        CHECK(a.confirmed);
+        ++earlier;
+      }
+    }
+  }
+  CHECK(earlier > 0);
 }
 
 TEST_CASE("jdt-vb: the free energy never decreases over the VB iterations", "[jdt_vb]") {

@@ -249,6 +249,32 @@ TEST_CASE("the follow gate and the OSPA cut-off are options that change the metr
   REQUIRE_THROWS_AS(dabench::compute_tracking_metrics(two_targets(), set, options), dabench::InputError);
 }
 
+TEST_CASE("aee_assigned averages the errors of every scan a labelled track shares with its target") {
+  // Target 0's track is exact on scans 0..9 and 30 km off in range on 10..14 (beyond the 20 km
+  // gate), then exact on 15..19: it follows on 15 of 20 scans (≥ half), so it is labelled with
+  // target 0 and the target counts as covered on those 15. Target 1 exact.
+  TrackSet set = perfect();
+  for (int c = 10; c < 15; ++c) set.tracks[0].states(0, c) += 30.0;
+  TrackingMetricsOptions options;
+  TrackingMetrics followed = dabench::compute_tracking_metrics(two_targets(), set, options);
+  REQUIRE(followed.nvt == 2.0);
+  REQUIRE(followed.tpd == Approx((15.0 / 20.0 + 1.0) / 2.0));
+  REQUIRE(followed.aee_range_km == Approx(0.0).margin(1e-12));  // the excursion is not followed
+  options.aee_assigned = true;
+  const TrackingMetrics assigned = dabench::compute_tracking_metrics(two_targets(), set, options);
+  // 5 scans of 30 km among 20 + 21 assigned (target, scan) pairs; nothing else changes.
+  REQUIRE(assigned.aee_range_km == Approx(5.0 * 30.0 / 41.0));
+  REQUIRE(assigned.aee_bearing_rad == Approx(0.0).margin(1e-12));
+  REQUIRE(assigned.tpd == followed.tpd);
+  REQUIRE(assigned.nvt == followed.nvt);
+  REQUIRE(assigned.ttl_scans == followed.ttl_scans);
+  REQUIRE(assigned.mospa_km == followed.mospa_km);
+  // A track beyond the gate on more than half of its scans is false: it has no assigned pairs.
+  TrackSet far = perfect();
+  far.tracks[0] = on_target(1, 0, 0, 19, 25.0);
+  REQUIRE(dabench::compute_tracking_metrics(two_targets(), far, options).aee_range_km == Approx(0.0).margin(1e-12));
+}
+
 TEST_CASE("mean over runs skips undefined fields") {
   TrackingMetrics a, b;
   a.nvt = 4.0, b.nvt = 2.0;
