@@ -134,7 +134,7 @@ void Run::sequential_pass() {
   for (int i = 0; i < static_cast<int>(tracks_.size()); ++i) {
     if (!tracks_[i].confirmed_once) continue;
     batch_.push_back(i);
-    tracks_[i].coupling = markov_couplings(tracks_[i].marginal);
+    tracks_[i].coupling = markov_couplings(tracks_[i].marginal, tracks_[i].first);
   }
 }
 

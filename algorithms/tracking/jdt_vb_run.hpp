@@ -125,7 +125,8 @@ class Run {
     std::vector<Gaussian> marginal;
     std::vector<Eigen::MatrixXd> coupling;
   };
-  std::vector<Eigen::MatrixXd> markov_couplings(const std::vector<Gaussian>& marginal) const;
+  // Cov(x_k, x_{k+1}) of the chain with these marginals (scans first, first + 1, ...).
+  std::vector<Eigen::MatrixXd> markov_couplings(const std::vector<Gaussian>& marginal, int first) const;
   KinematicChain smooth_and_fuse(int track) const;
   KinematicChain joint_smoother(int track) const;
   int first_pseudo_of(int track, int k) const {
