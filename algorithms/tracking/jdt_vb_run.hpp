@@ -101,7 +101,10 @@ class Run {
 
   void sequential_pass();
   // `iterations`, when set, receives the output before the first iteration and after each.
-  void batch(std::vector<double>& history, int& rejected, SolveReport& report, std::vector<TrackSet>* iterations);
+  // `rejected` counts the rejected Module-1 updates, `largest_rejected_decrease` the most any of
+  // them would have lowered B (left as it is when none is rejected).
+  void batch(std::vector<double>& history, int& rejected, double& largest_rejected_decrease, SolveReport& report,
+             std::vector<TrackSet>* iterations);
   void output(TrackSet& tracks) const;
 
  private:
