@@ -137,11 +137,12 @@ void Run::sequential_pass() {
   for (int i = 0; i < static_cast<int>(tracks_.size()); ++i) {
     if (!tracks_[i].confirmed_once) continue;
     batch_.push_back(i);
-    tracks_[i].coupling = markov_couplings(tracks_[i].marginal);
+    tracks_[i].coupling = markov_couplings(tracks_[i].marginal, tracks_[i].first);
   }
 }
 
-void Run::batch(std::vector<double>& history, int& rejected, SolveReport& report, std::vector<TrackSet>* iterations) {
+void Run::batch(std::vector<double>& history, int& rejected, double& largest_rejected_decrease, SolveReport& report,
+                std::vector<TrackSet>* iterations) {
   const int scans = problem_.scan_count();
   scans_.assign(scans, {});
   for (int i : batch_) {
@@ -187,12 +188,14 @@ void Run::batch(std::vector<double>& history, int& rejected, SolveReport& report
     for (int i : batch_) {
       TrackRecord& t = tracks_[i];
       KinematicChain candidate = o_.joint_fusion ? joint_smoother(i) : smooth_and_fuse(i);
-      if (track_kinematic_terms(i, candidate.marginal, candidate.coupling) >=
-          track_kinematic_terms(i, t.marginal, t.coupling)) {
+      const double proposed = track_kinematic_terms(i, candidate.marginal, candidate.coupling);
+      const double kept = track_kinematic_terms(i, t.marginal, t.coupling);
+      if (proposed >= kept) {
         t.marginal = std::move(candidate.marginal);
         t.coupling = std::move(candidate.coupling);
       } else {
         ++rejected;
+        if (!(kept - proposed <= largest_rejected_decrease)) largest_rejected_decrease = kept - proposed;  // NaN sticks
       }
     }
     history.push_back(free_energy());
@@ -248,6 +251,7 @@ void JdtVbTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveRe
   report.reset();
   free_energy_history_.clear();
   rejected_updates_ = 0;
+  largest_rejected_decrease_ = 0.0;
   if (!problem.sensor || problem.sensor->measurement_dim() < 3 ||
       static_cast<int>(problem.detection_probability.size()) != problem.sensor->paths()) {
     report.skipped = "problem_without_multipath_sensor";
@@ -264,7 +268,7 @@ void JdtVbTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveRe
   try {
     jdt_vb_detail::Run run(options_, problem);
     run.sequential_pass();
-    run.batch(free_energy_history_, rejected_updates_, report, iteration_history());
+    run.batch(free_energy_history_, rejected_updates_, largest_rejected_decrease_, report, iteration_history());
     run.output(tracks);
   } catch (const UnscentedFailure& failure) {  // a covariance lost positive definiteness: no tracks
     tracks.tracks.clear();

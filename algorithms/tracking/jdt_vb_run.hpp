@@ -101,7 +101,10 @@ class Run {
 
   void sequential_pass();
   // `iterations`, when set, receives the output before the first iteration and after each.
-  void batch(std::vector<double>& history, int& rejected, SolveReport& report, std::vector<TrackSet>* iterations);
+  // `rejected` counts the rejected Module-1 updates, `largest_rejected_decrease` the most any of
+  // them would have lowered B (left as it is when none is rejected).
+  void batch(std::vector<double>& history, int& rejected, double& largest_rejected_decrease, SolveReport& report,
+             std::vector<TrackSet>* iterations);
   void output(TrackSet& tracks) const;
 
  private:
@@ -125,7 +128,8 @@ class Run {
     std::vector<Gaussian> marginal;
     std::vector<Eigen::MatrixXd> coupling;
   };
-  std::vector<Eigen::MatrixXd> markov_couplings(const std::vector<Gaussian>& marginal) const;
+  // Cov(x_k, x_{k+1}) of the chain with these marginals (scans first, first + 1, ...).
+  std::vector<Eigen::MatrixXd> markov_couplings(const std::vector<Gaussian>& marginal, int first) const;
   KinematicChain smooth_and_fuse(int track) const;
   KinematicChain joint_smoother(int track) const;
   int first_pseudo_of(int track, int k) const {

@@ -1,9 +1,12 @@
 // JDT-VB Module 1: synthetic measurements (eq 36), the stacked UKF update, per-path smoothers fused
-// by eq (32), the joint smoother, and the Gauss–Markov couplings of q(x).
+// by eq (32), the joint smoother, and the Gauss–Markov couplings of q(x) where the marginals come
+// from no smoother of the model (eq 32, the sequential pass).
 #include "algorithms/tracking/jdt_vb_run.hpp"
 
 #include <algorithm>
 #include <optional>
+
+#include "algorithms/tracking/gauss_markov_coupling.hpp"
 
 namespace dabench::jdt_vb_detail {
 
@@ -86,23 +89,18 @@ Run::KinematicChain Run::smooth_and_fuse(int track) const {
     const Eigen::MatrixXd p = llt.solve(Eigen::MatrixXd::Identity(n, n));
     fused.marginal[k].covariance = 0.5 * (p + p.transpose());
   }
-  fused.coupling = markov_couplings(fused.marginal);
+  fused.coupling = markov_couplings(fused.marginal, t.first);
   return fused;
 }
 
-// The coupling of a Gauss–Markov chain with given marginals under the motion model:
-// Cov(x_k, x_{k+1}) = G_k P_{k+1}, G_k = P_k Fᵀ (F P_k Fᵀ + Q)⁻¹; zero where the resulting
-// conditional covariance P_k − G_k P_{k+1} G_kᵀ is not positive definite.
-std::vector<Eigen::MatrixXd> Run::markov_couplings(const std::vector<Gaussian>& marginal) const {
+// The couplings of a Gauss–Markov chain with these marginals that maximise B's chain terms
+// (gauss_markov_coupling.hpp); a marginal that is not positive definite is a failed run.
+std::vector<Eigen::MatrixXd> Run::markov_couplings(const std::vector<Gaussian>& marginal, int first) const {
   std::vector<Eigen::MatrixXd> coupling;
   for (std::size_t k = 0; k + 1 < marginal.size(); ++k) {
-    const Eigen::MatrixXd& now = marginal[k].covariance;
-    const Eigen::MatrixXd& next = marginal[k + 1].covariance;
-    const Eigen::MatrixXd predicted = transition_ * now * transition_.transpose() + problem_.process_covariance;
-    const Eigen::MatrixXd gain = Eigen::LLT<Eigen::MatrixXd>(predicted).solve(transition_ * now).transpose();
-    const Eigen::LLT<Eigen::MatrixXd> conditional(now - gain * next * gain.transpose());
-    coupling.push_back(conditional.info() == Eigen::Success ? Eigen::MatrixXd(gain * next)
-                                                            : Eigen::MatrixXd::Zero(now.rows(), now.cols()));
+    auto c = gauss_markov_coupling(marginal[k].covariance, marginal[k + 1].covariance, transition_, process_);
+    if (!c) throw UnscentedFailure("marginal", first + static_cast<int>(k));
+    coupling.push_back(std::move(*c));
   }
   return coupling;
 }

@@ -32,8 +32,10 @@
 namespace dabench {
 
 // what(): "ukf: <which> covariance not positive definite at scan <k>", <which> = state,
-// innovation or predicted; k = first_scan + the index of the scan in the call (the scan passed
-// to unscented_update); " at scan" is left out where no scan is known (unscented_transform).
+// innovation or predicted (JDT-VB also throws it with `marginal` for a marginal of q(x) that is
+// no covariance, which no coupling can join to the next); k = first_scan + the index of the
+// scan in the call (the scan passed to unscented_update); " at scan" is left out where no scan
+// is known (unscented_transform).
 class UnscentedFailure : public std::runtime_error {
  public:
   UnscentedFailure(const std::string& which, int scan);
