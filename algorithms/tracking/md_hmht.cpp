@@ -100,9 +100,10 @@ struct Child {
 
 class MdHmhtRun {
  public:
-  // `options` resolved (MdHmhtOptions::resolved).
-  MdHmhtRun(const MdHmhtOptions& options, const TrackingProblem& problem)
-      : o_(options), problem_(problem), filter_(problem, options.gate_probability), paths_(filter_.paths()) {
+  // `options` resolved (MdHmhtOptions::resolved); `observer` may be null.
+  MdHmhtRun(const MdHmhtOptions& options, const TrackingProblem& problem, const md_hmht::ScanObserver* observer)
+      : o_(options), problem_(problem), observer_(observer), filter_(problem, options.gate_probability),
+        paths_(filter_.paths()) {
     const bool dense = problem.clutter_mean > 200.0;
     n_ = o_.hypotheses > 0 ? o_.hypotheses : (dense ? 2 : 3);
     miss_limit_ = o_.deletion_misses > 0 ? o_.deletion_misses : (dense ? 5 : 3);
@@ -132,6 +133,7 @@ class MdHmhtRun {
     hypotheses_ = std::move(next);
     const double best = hypotheses_.front().score;
     for (Hypothesis& h : hypotheses_) h.score -= best;
+    if (observer_ != nullptr && *observer_) (*observer_)(k, snapshots());
   }
 
   // Every distinct live node of every hypothesis, predicted and gated once.
@@ -425,6 +427,26 @@ class MdHmhtRun {
     }
   }
 
+  // The scan's hypotheses as the tests see them (md_hmht::run_observed).
+  std::vector<md_hmht::HypothesisSnapshot> snapshots() const {
+    const auto history = [](const NodePtr& end) {
+      md_hmht::TrackHistory t{end->track, end->first_scan, end->confirmed_scan, end->llr, end->empty_gates, {}};
+      for (const TrackNode* node = end.get(); node->scan > node->first_scan; node = node->previous.get()) {
+        t.assigned.push_back(node->assigned);
+      }
+      std::reverse(t.assigned.begin(), t.assigned.end());
+      return t;
+    };
+    std::vector<md_hmht::HypothesisSnapshot> out;
+    for (const Hypothesis& h : hypotheses_) {
+      md_hmht::HypothesisSnapshot& snapshot = out.emplace_back();
+      snapshot.score = h.score;
+      for (const NodePtr& node : h.live) snapshot.live.push_back(history(node));
+      for (const NodePtr& node : h.ended) snapshot.ended.push_back(history(node));
+    }
+    return out;
+  }
+
   struct Row {
     int track;  // index in the parent's live list
     int path;
@@ -437,6 +459,7 @@ class MdHmhtRun {
 
   const MdHmhtOptions& o_;
   const TrackingProblem& problem_;
+  const md_hmht::ScanObserver* observer_;
   md_hmht::TrackFilter filter_;
   const int paths_;
   int n_ = 3, miss_limit_ = 3;
@@ -492,7 +515,7 @@ void MdHmhtTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveR
   }
   check_problem(problem);
   try {
-    MdHmhtRun(options_, problem).run(tracks);
+    MdHmhtRun(options_, problem, nullptr).run(tracks);
   } catch (const UnscentedFailure& failure) {  // a covariance lost positive definiteness: no tracks
     tracks.tracks.clear();
     report.skipped = std::string("failed:") + failure.what();
@@ -500,5 +523,14 @@ void MdHmhtTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveR
 }
 
 DABENCH_REGISTER_TRACKER(MdHmhtTracker);
+
+void md_hmht::run_observed(const MdHmhtOptions& options, const TrackingProblem& problem, TrackSet& tracks,
+                           const ScanObserver& observer) {
+  if (std::string why = options.validate(); !why.empty()) throw InputError("md-hmht: " + why);
+  if (!problem.sensor) throw InputError("md-hmht: the problem has no multipath sensor");
+  check_problem(problem);
+  const MdHmhtOptions resolved = options.resolved();
+  MdHmhtRun(resolved, problem, &observer).run(tracks);
+}
 
 }  // namespace dabench

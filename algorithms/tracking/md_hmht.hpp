@@ -98,8 +98,10 @@
 // Murty runs per cluster, which is tiny here (notes §5: ≤ 8 rows even at target crossings).
 // assignment = per_path ranks each parent's rows path by path for each of ≤ n partial events,
 // up to P·n rankings of smaller problems instead of one (measured at p_d 0.4: TET 1.1-1.2 times).
+#include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "harness/core/params.hpp"
 #include "harness/tracking/tracker.hpp"
@@ -144,5 +146,33 @@ class MdHmhtTracker final : public Tracker {
  private:
   Options options_;
 };
+
+// What the tests of the hypothesis machinery observe (tests/tracking/test_md_hmht_hypotheses.cpp).
+namespace md_hmht {
+
+struct TrackHistory {
+  long track = 0;           // the track's id
+  int first_scan = 0;       // its head's scan
+  int confirmed_scan = -1;  // the scan its LLR reached confirm_llr, −1 while tentative
+  double llr = 0.0;         // its log-likelihood ratio now
+  int empty_gates = 0;      // successive scans, up to now, with no measurement in any of its gates
+  // assigned[s][τ]: the measurement (column of scan first_scan + 1 + s) path τ took, −1 none.
+  std::vector<std::vector<int>> assigned;
+};
+
+struct HypothesisSnapshot {
+  double score = 0.0;               // log-likelihood ratio minus the best hypothesis' (≤ 0)
+  std::vector<TrackHistory> live;   // by increasing track id
+  std::vector<TrackHistory> ended;  // deleted confirmed tracks, in order of deletion
+};
+
+// Called after each scan k with the surviving hypotheses, best first.
+using ScanObserver = std::function<void(int k, const std::vector<HypothesisSnapshot>& hypotheses)>;
+
+// MdHmhtTracker::run (with options.resolved()) that also reports every scan's hypotheses.
+void run_observed(const MdHmhtOptions& options, const TrackingProblem& problem, TrackSet& tracks,
+                  const ScanObserver& observer);
+
+}  // namespace md_hmht
 
 }  // namespace dabench

@@ -33,6 +33,7 @@ struct TrackNode {
   double llr = 0.0;      // Σ over scans since the head of Σ_τ ln(1 − p_d p_g) + Σ_assigned ln ψ
   int empty_gates = 0;   // successive scans with no measurement in any path's gate
   int confirmed_scan = -1;  // the scan at which llr first reached the confirmation threshold, −1 none
+  std::vector<int> assigned;  // per path, the measurement it took at `scan` (−1 none); empty for a head
   std::shared_ptr<const TrackNode> previous;
 
   bool confirmed() const { return confirmed_scan >= 0; }
