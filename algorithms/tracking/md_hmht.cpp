@@ -36,6 +36,13 @@ void MdHmhtOptions::bind(ParamList& p) {
   p.add("head_range_rate", head_range_rate, "track-head threshold on slant range rate, km/s, > 0");
   p.add("head_azimuth", head_azimuth, "track-head threshold on azimuth, rad, > 0");
   p.add("head_bearing_rate_sd", head_bearing_rate_sd, "s.d. of the bearing rate of a new track, rad/s, > 0");
+  p.add_choice("report_from", report_from, {"head", "confirmation"},
+               "a confirmed track is output from its head's scan (head) or from the scan that confirmed it (confirmation)");
+  p.add_choice("assignment", assignment, {"joint", "per_path"},
+               "joint: one 2-D assignment over all (track, path) pseudo-targets; per_path: one per path in turn "
+               "(EE, EF, FE, FF) over the measurements earlier paths left, a beam of n (the paper's path-dependent assignments)");
+  p.add("literal", literal,
+        "1: the paper-literal set, overriding alternative_heads = 0, report_from = confirmation, assignment = per_path");
 }
 
 std::string MdHmhtOptions::validate() const {
@@ -50,7 +57,23 @@ std::string MdHmhtOptions::validate() const {
                          {"head_azimuth", head_azimuth}, {"head_bearing_rate_sd", head_bearing_rate_sd}}) {
     if (!(v > 0.0 && std::isfinite(v))) return fmt::format("{} = {} must be finite and > 0", name, v);
   }
+  if (report_from != kFromHead && report_from != kFromConfirmation) {
+    return fmt::format("report_from = {} must be 0 (head) or 1 (confirmation)", report_from);
+  }
+  if (assignment != kJoint && assignment != kPerPath) {
+    return fmt::format("assignment = {} must be 0 (joint) or 1 (per_path)", assignment);
+  }
   return {};
+}
+
+MdHmhtOptions MdHmhtOptions::resolved() const {
+  MdHmhtOptions o = *this;
+  if (literal) {
+    o.alternative_heads = false;
+    o.report_from = kFromConfirmation;
+    o.assignment = kPerPath;
+  }
+  return o;
 }
 
 namespace {
@@ -77,8 +100,10 @@ struct Child {
 
 class MdHmhtRun {
  public:
-  MdHmhtRun(const MdHmhtOptions& options, const TrackingProblem& problem)
-      : o_(options), problem_(problem), filter_(problem, options.gate_probability), paths_(filter_.paths()) {
+  // `options` resolved (MdHmhtOptions::resolved); `observer` may be null.
+  MdHmhtRun(const MdHmhtOptions& options, const TrackingProblem& problem, const md_hmht::ScanObserver* observer)
+      : o_(options), problem_(problem), observer_(observer), filter_(problem, options.gate_probability),
+        paths_(filter_.paths()) {
     const bool dense = problem.clutter_mean > 200.0;
     n_ = o_.hypotheses > 0 ? o_.hypotheses : (dense ? 2 : 3);
     miss_limit_ = o_.deletion_misses > 0 ? o_.deletion_misses : (dense ? 5 : 3);
@@ -108,6 +133,7 @@ class MdHmhtRun {
     hypotheses_ = std::move(next);
     const double best = hypotheses_.front().score;
     for (Hypothesis& h : hypotheses_) h.score -= best;
+    if (observer_ != nullptr && *observer_) (*observer_)(k, snapshots());
   }
 
   // Every distinct live node of every hypothesis, predicted and gated once.
@@ -125,19 +151,86 @@ class MdHmhtRun {
 
   const TrackPrediction& prediction(const NodePtr& node) const { return predictions_[slot_.at(node->serial)]; }
 
-  // The parent's n best children: Murty per cluster of pseudo-targets, lists merged.
+  // The parent's n best children (assignment = joint): one 2-D assignment over all its
+  // pseudo-targets, Murty per cluster, lists merged.
   void rank_children(int parent, std::vector<Child>& children) {
+    if (o_.assignment == MdHmhtOptions::kPerPath) {
+      rank_children_per_path(parent, children);
+      return;
+    }
     const Hypothesis& h = hypotheses_[parent];
     const int tracks = static_cast<int>(h.live.size());
     // Rows: pseudo-targets (track, path) with a gated measurement; clusters by shared measurements.
     rows_.clear();
+    row_arcs_.clear();
     double miss_sum = 0.0;
     for (int t = 0; t < tracks; ++t) {
       const TrackPrediction& p = prediction(h.live[t]);
       miss_sum += p.miss_log_sum;
-      for (int tau = 0; tau < paths_; ++tau)
-        if (!p.arcs[tau].empty()) rows_.push_back({t, tau, &p.arcs[tau]});
+      for (int tau = 0; tau < paths_; ++tau) add_row(t, tau, p.arcs[tau], nullptr);
     }
+    rank_rows();
+    for (int i = 0; i < static_cast<int>(totals_.size()); ++i) {
+      Child child;
+      child.parent = parent;
+      child.score = h.score + miss_sum - totals_[i];
+      child.measurement.assign(static_cast<std::size_t>(tracks) * paths_, -1);
+      write_event(i, child.measurement.data());
+      children.push_back(std::move(child));
+    }
+  }
+
+  // The parent's children under assignment = per_path (header): for τ = 0, 1, ... each of the n
+  // best partial events so far is extended by the n best 2-D assignments of the tracks' path-τ
+  // pseudo-targets to the measurements it has not taken; the n best extensions go on.
+  void rank_children_per_path(int parent, std::vector<Child>& children) {
+    const Hypothesis& h = hypotheses_[parent];
+    const int tracks = static_cast<int>(h.live.size());
+    double miss_sum = 0.0;
+    for (int t = 0; t < tracks; ++t) miss_sum += prediction(h.live[t]).miss_log_sum;
+    partials_.assign(1, {0.0, std::vector<int>(static_cast<std::size_t>(tracks) * paths_, -1)});
+    taken_.assign(index_.order.size(), 0);
+    for (int tau = 0; tau < paths_; ++tau) {
+      extended_.clear();
+      for (const Partial& q : partials_) {
+        for (int j : q.measurement)
+          if (j >= 0) taken_[j] = 1;
+        rows_.clear();
+        row_arcs_.clear();
+        for (int t = 0; t < tracks; ++t) add_row(t, tau, prediction(h.live[t]).arcs[tau], &taken_);
+        for (int j : q.measurement)
+          if (j >= 0) taken_[j] = 0;
+        rank_rows();
+        for (int i = 0; i < static_cast<int>(totals_.size()); ++i) {
+          Partial e{q.cost + totals_[i], q.measurement};
+          write_event(i, e.measurement.data());
+          extended_.push_back(std::move(e));
+        }
+      }
+      std::stable_sort(extended_.begin(), extended_.end(), [](const Partial& a, const Partial& b) { return a.cost < b.cost; });
+      if (static_cast<int>(extended_.size()) > n_) extended_.resize(n_);
+      partials_.swap(extended_);
+    }
+    for (Partial& q : partials_) children.push_back({parent, h.score + miss_sum - q.cost, std::move(q.measurement)});
+  }
+
+  // Appends the row (track t, path τ) if it gates a measurement not in `taken` (null: none taken).
+  void add_row(int t, int tau, const std::vector<md_hmht::Arc>& arcs, const std::vector<char>* taken) {
+    const int begin = static_cast<int>(row_arcs_.size());
+    for (const md_hmht::Arc& arc : arcs)
+      if (taken == nullptr || !(*taken)[arc.measurement]) row_arcs_.push_back(arc);
+    const int end = static_cast<int>(row_arcs_.size());
+    if (end > begin) rows_.push_back({t, tau, begin, end});
+  }
+
+  std::span<const md_hmht::Arc> arcs(int row) const {
+    const Row& r = rows_[row];
+    return {row_arcs_.data() + r.begin, static_cast<std::size_t>(r.end - r.begin)};
+  }
+
+  // The n best events of rows_: clusters, Murty per cluster, lists merged into totals_ (the
+  // events' costs, ascending) and choices_ (per event, the index chosen in each cluster's list).
+  void rank_rows() {
     cluster_rows();
     const int clusters = static_cast<int>(cluster_rows_.size());
     if (static_cast<int>(lists_.size()) < clusters) lists_.resize(clusters);
@@ -147,20 +240,18 @@ class MdHmhtRun {
       spans_.push_back(lists_[c].costs());
     }
     merge_.merge(spans_, n_, totals_, choices_);
-    for (int i = 0; i < static_cast<int>(totals_.size()); ++i) {
-      Child child;
-      child.parent = parent;
-      child.score = h.score + miss_sum - totals_[i];
-      child.measurement.assign(static_cast<std::size_t>(tracks) * paths_, -1);
-      for (int c = 0; c < clusters; ++c) {
-        const auto columns = lists_[c].columns(choices_[static_cast<std::size_t>(i) * clusters + c]);
-        for (int r = 0; r < static_cast<int>(columns.size()); ++r) {
-          if (columns[r] < 0) continue;
-          const Row& row = rows_[cluster_rows_[c][r]];
-          child.measurement[static_cast<std::size_t>(row.track) * paths_ + row.path] = cluster_columns_[c][columns[r]];
-        }
+  }
+
+  // Writes event i of rank_rows into measurement[track · paths + path] (rows it leaves out untouched).
+  void write_event(int i, int* measurement) const {
+    const int clusters = static_cast<int>(cluster_rows_.size());
+    for (int c = 0; c < clusters; ++c) {
+      const auto columns = lists_[c].columns(choices_[static_cast<std::size_t>(i) * clusters + c]);
+      for (int r = 0; r < static_cast<int>(columns.size()); ++r) {
+        if (columns[r] < 0) continue;
+        const Row& row = rows_[cluster_rows_[c][r]];
+        measurement[static_cast<std::size_t>(row.track) * paths_ + row.path] = cluster_columns_[c][columns[r]];
       }
-      children.push_back(std::move(child));
     }
   }
 
@@ -175,7 +266,7 @@ class MdHmhtRun {
     };
     owner_.assign(index_.order.size(), -1);
     for (int r = 0; r < rows; ++r) {
-      for (const md_hmht::Arc& arc : *rows_[r].arcs) {
+      for (const md_hmht::Arc& arc : arcs(r)) {
         int& owner = owner_[arc.measurement];
         if (owner < 0) owner = r;
         else {
@@ -199,7 +290,7 @@ class MdHmhtRun {
       auto& columns = cluster_columns_[c];
       columns.clear();
       for (int r : cluster_rows_[c])
-        for (const md_hmht::Arc& arc : *rows_[r].arcs) columns.push_back(arc.measurement);
+        for (const md_hmht::Arc& arc : arcs(r)) columns.push_back(arc.measurement);
       std::sort(columns.begin(), columns.end());
       columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
     }
@@ -212,7 +303,7 @@ class MdHmhtRun {
     cost_.assign(static_cast<std::size_t>(R) * C, std::numeric_limits<double>::infinity());
     miss_.assign(R, 0.0);  // costs are relative to the miss (ψ's denominator)
     for (int r = 0; r < R; ++r) {
-      for (const md_hmht::Arc& arc : *rows_[rows[r]].arcs) {
+      for (const md_hmht::Arc& arc : arcs(rows[r])) {
         const int column = static_cast<int>(std::lower_bound(columns.begin(), columns.end(), arc.measurement) - columns.begin());
         cost_[static_cast<std::size_t>(r) * C + column] = arc.cost;
       }
@@ -273,7 +364,7 @@ class MdHmhtRun {
     for (std::size_t t = 0; t < parent.live.size(); ++t) {
       const NodePtr next = updated(parent.live[t], &c.measurement[t * paths_], k);
       if (next->empty_gates < miss_limit_) child.live.push_back(next);
-      else if (next->confirmed) child.ended.push_back(next);
+      else if (next->confirmed()) child.ended.push_back(next);
     }
     keep_one_reading(child.live);
     child.live.insert(child.live.end(), heads.begin(), heads.end());
@@ -285,7 +376,7 @@ class MdHmhtRun {
   static void keep_one_reading(std::vector<NodePtr>& live) {
     std::map<long, const TrackNode*> kept;  // family → its surviving confirmed reading
     for (const NodePtr& node : live) {
-      if (!node->confirmed) continue;
+      if (!node->confirmed()) continue;
       const auto [it, inserted] = kept.emplace(node->family, node.get());
       if (!inserted && node->llr > it->second->llr) it->second = node.get();
     }
@@ -300,7 +391,7 @@ class MdHmhtRun {
     auto [it, inserted] = updates_.try_emplace({node->serial, std::vector<int>(measurement_of_path, measurement_of_path + paths_)});
     if (!inserted) return it->second;
     TrackNode next = filter_.update(node, prediction(node), measurement_of_path, problem_.scans[k], k, next_serial_++);
-    next.confirmed = node->confirmed || next.llr >= o_.confirm_llr;
+    if (!next.confirmed() && next.llr >= o_.confirm_llr) next.confirmed_scan = k;
     it->second = std::make_shared<const TrackNode>(std::move(next));
     return it->second;
   }
@@ -310,37 +401,65 @@ class MdHmhtRun {
     const Hypothesis& best = hypotheses_.front();
     std::vector<NodePtr> ends;
     for (const NodePtr& node : best.live)
-      if (node->confirmed) ends.push_back(node);
+      if (node->confirmed()) ends.push_back(node);
     ends.insert(ends.end(), best.ended.begin(), best.ended.end());
     std::sort(ends.begin(), ends.end(), [](const NodePtr& a, const NodePtr& b) { return a->track < b->track; });
     const int last_scan = problem_.scan_count() - 1;
     for (const NodePtr& end : ends) {
-      // A deleted track ends at its last assigned measurement; a live one at the last scan.
+      // A deleted track ends at its last assigned measurement; a live one at the last scan. It
+      // starts at its head, or at its confirmation (a scan with an assigned measurement: only
+      // those raise the LLR, so first ≤ last).
       const int last = end->scan == last_scan && end->empty_gates < miss_limit_ ? last_scan : end->last_hit_scan;
+      const int first = o_.report_from == MdHmhtOptions::kFromConfirmation ? end->confirmed_scan : end->first_scan;
       Track track;
       track.id = static_cast<int>(end->track);
-      track.first_scan = end->first_scan;
+      track.first_scan = first;
       track.confirmed = true;
-      const int n = static_cast<int>(end->estimate.mean.size()), length = last - end->first_scan + 1;
+      const int n = static_cast<int>(end->estimate.mean.size()), length = last - first + 1;
       track.states.resize(n, length);
       track.covariance_diagonals.resize(n, length);
-      for (const TrackNode* node = end.get(); node != nullptr; node = node->previous.get()) {
+      for (const TrackNode* node = end.get(); node != nullptr && node->scan >= first; node = node->previous.get()) {
         if (node->scan > last) continue;
-        track.states.col(node->scan - end->first_scan) = node->estimate.mean;
-        track.covariance_diagonals.col(node->scan - end->first_scan) = node->estimate.covariance.diagonal();
+        track.states.col(node->scan - first) = node->estimate.mean;
+        track.covariance_diagonals.col(node->scan - first) = node->estimate.covariance.diagonal();
       }
       tracks.tracks.push_back(std::move(track));
     }
   }
 
+  // The scan's hypotheses as the tests see them (md_hmht::run_observed).
+  std::vector<md_hmht::HypothesisSnapshot> snapshots() const {
+    const auto history = [](const NodePtr& end) {
+      md_hmht::TrackHistory t{end->track, end->first_scan, end->confirmed_scan, end->llr, end->empty_gates, {}};
+      for (const TrackNode* node = end.get(); node->scan > node->first_scan; node = node->previous.get()) {
+        t.assigned.push_back(node->assigned);
+      }
+      std::reverse(t.assigned.begin(), t.assigned.end());
+      return t;
+    };
+    std::vector<md_hmht::HypothesisSnapshot> out;
+    for (const Hypothesis& h : hypotheses_) {
+      md_hmht::HypothesisSnapshot& snapshot = out.emplace_back();
+      snapshot.score = h.score;
+      for (const NodePtr& node : h.live) snapshot.live.push_back(history(node));
+      for (const NodePtr& node : h.ended) snapshot.ended.push_back(history(node));
+    }
+    return out;
+  }
+
   struct Row {
     int track;  // index in the parent's live list
     int path;
-    const std::vector<md_hmht::Arc>* arcs;
+    int begin, end;  // its arcs: row_arcs_[begin, end)
+  };
+  struct Partial {  // assignment = per_path: an event over the paths so far
+    double cost;    // Σ c_pj of its pairs
+    std::vector<int> measurement;  // per (track, path) of the parent, −1 none
   };
 
   const MdHmhtOptions& o_;
   const TrackingProblem& problem_;
+  const md_hmht::ScanObserver* observer_;
   md_hmht::TrackFilter filter_;
   const int paths_;
   int n_ = 3, miss_limit_ = 3;
@@ -353,6 +472,9 @@ class MdHmhtRun {
   std::map<std::pair<long, std::vector<int>>, NodePtr> updates_;  // (node serial, assignment) → this scan's update
   // Per-parent workspace.
   std::vector<Row> rows_;
+  std::vector<md_hmht::Arc> row_arcs_;
+  std::vector<Partial> partials_, extended_;
+  std::vector<char> taken_;  // per measurement: taken by the partial event being extended
   std::vector<int> root_, owner_, cluster_of_root_;
   std::vector<std::vector<int>> cluster_rows_, cluster_columns_;
   std::vector<double> cost_, miss_, totals_;
@@ -393,7 +515,7 @@ void MdHmhtTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveR
   }
   check_problem(problem);
   try {
-    MdHmhtRun(options_, problem).run(tracks);
+    MdHmhtRun(options_, problem, nullptr).run(tracks);
   } catch (const UnscentedFailure& failure) {  // a covariance lost positive definiteness: no tracks
     tracks.tracks.clear();
     report.skipped = std::string("failed:") + failure.what();
@@ -401,5 +523,14 @@ void MdHmhtTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveR
 }
 
 DABENCH_REGISTER_TRACKER(MdHmhtTracker);
+
+void md_hmht::run_observed(const MdHmhtOptions& options, const TrackingProblem& problem, TrackSet& tracks,
+                           const ScanObserver& observer) {
+  if (std::string why = options.validate(); !why.empty()) throw InputError("md-hmht: " + why);
+  if (!problem.sensor) throw InputError("md-hmht: the problem has no multipath sensor");
+  check_problem(problem);
+  const MdHmhtOptions resolved = options.resolved();
+  MdHmhtRun(resolved, problem, &observer).run(tracks);
+}
 
 }  // namespace dabench

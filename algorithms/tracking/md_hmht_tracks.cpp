@@ -83,6 +83,8 @@ TrackNode TrackFilter::update(const NodePtr& node, const TrackPrediction& predic
   next.estimate = prediction.predicted;
   next.llr = node->llr + prediction.miss_log_sum;
   next.empty_gates = prediction.gate_hit ? 0 : node->empty_gates + 1;
+  next.confirmed_scan = node->confirmed_scan;
+  next.assigned.assign(measurement_of_path, measurement_of_path + paths_);
   next.previous = node;
 
   // Rows of the stacked transform that the assigned paths select.

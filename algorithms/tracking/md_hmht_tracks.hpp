@@ -32,8 +32,11 @@ struct TrackNode {
   Gaussian estimate;
   double llr = 0.0;      // Σ over scans since the head of Σ_τ ln(1 − p_d p_g) + Σ_assigned ln ψ
   int empty_gates = 0;   // successive scans with no measurement in any path's gate
-  bool confirmed = false;
+  int confirmed_scan = -1;  // the scan at which llr first reached the confirmation threshold, −1 none
+  std::vector<int> assigned;  // per path, the measurement it took at `scan` (−1 none); empty for a head
   std::shared_ptr<const TrackNode> previous;
+
+  bool confirmed() const { return confirmed_scan >= 0; }
 };
 using NodePtr = std::shared_ptr<const TrackNode>;
 
@@ -65,7 +68,7 @@ class TrackFilter {
                TrackPrediction& out) const;
 
   // The node at scan k after the child's assignment: measurement_of_path[τ] is a column gated by
-  // path τ or −1. `serial` is the new node's.
+  // path τ or −1. `serial` is the new node's; confirmed_scan is the node's (the caller confirms).
   TrackNode update(const NodePtr& node, const TrackPrediction& prediction, const int* measurement_of_path,
                    const Eigen::MatrixXd& scan, int k, long serial) const;
 
