@@ -23,6 +23,10 @@ class Run:
     folder: str
     command: str
     note: str = ""  # what a reader should expect: its length, what it is for
+    # A measurement that needs a quiet machine or hours (kernel benchmarks, Algorithm 2's cost):
+    # while it is not recorded, its row says so and its checks say "not run"; once recorded, its
+    # provenance is checked like any other run's.
+    optional: bool = False
 
 
 @dataclasses.dataclass
@@ -123,12 +127,14 @@ def experiment_body(text):
 
 def command_words(command):
     """The program's part of a command line as words: a launcher before it (`mpirun -np 2`,
-    `taskset -c 0`) dropped, quotes resolved as the shell does."""
+    `taskset -c 0`) dropped, quotes resolved as the shell does, and `--resume` read as `--force`
+    (a resumed run finishes the same trials with the same seeds: the files are bit-identical)."""
     words = shlex.split(command)
     for i, w in enumerate(words):
         if os.path.basename(w) in ("dabench", "dabench_bench"):
-            return words[i:]
-    return words
+            words = words[i:]
+            break
+    return ["--force" if w == "--resume" else w for w in words]
 
 
 def is_bench(run):
@@ -165,6 +171,8 @@ def bench_provenance(root, run):
 def provenance(root, run):
     """(meta, problems) of a committed run: problems lists why the run cannot be traced to the
     committed code and experiment (modified source, another command, an edited experiment)."""
+    if run.optional and not os.path.exists(os.path.join(root, run.folder)):
+        return None, []
     if is_bench(run):
         return bench_provenance(root, run)
     problems = []
@@ -204,7 +212,8 @@ def runs_table(root, runs):
         meta, found = provenance(root, run)
         problems += found
         if meta is None:
-            rows.append([f"`{run.folder}`", f"`{short_command(run.command)}`", "missing", "", "", ""])
+            state = "not recorded" if run.optional and not found else "missing"
+            rows.append([f"`{run.folder}`", f"`{short_command(run.command)}`", state, "", "", ""])
             continue
         commit = meta.get("git_commit", "?")
         if is_bench(run):
