@@ -226,6 +226,8 @@ def runs_table(root, runs):
                     + (f" × {meta.get('processes')} processes" if meta.get("processes", 1) != 1 else ""))
             finished = (meta.get("end_time") or "")[:10]
             wall = markdown.duration(meta["wall_seconds"]) if meta.get("wall_seconds") is not None else "–"
+            if meta.get("resumed"):
+                wall += " (its last session: the run was resumed)"
         state = "clean" if clean else "**modified**"
         rows.append([f"`{run.folder}`", f"`{short_command(run.command)}`", size,
                      f"`{commit[:10]}` ({state})", finished, wall])

@@ -143,8 +143,11 @@ def study_wall_times(report):
     for name, folder in (("jdtvb_table4", "results/jdtvb/table4"), ("multiscan", None)):
         if folder:
             report.value(f"wall.{name}", markdown.duration(data.read_meta(report.root, folder)["wall_seconds"]))
-    total = sum(data.read_meta(report.root, f"results/multiscan/{f}")["wall_seconds"] for f in ("fig3", "fig4", "fig5"))
-    report.value("wall.multiscan", markdown.duration(total))
+    metas = {f: data.read_meta(report.root, f"results/multiscan/{f}") for f in ("fig3", "fig4", "fig5")}
+    total = sum(m["wall_seconds"] for m in metas.values())
+    resumed = [f for f, m in metas.items() if m.get("resumed")]
+    report.value("wall.multiscan", markdown.duration(total) + (
+        f" (more: {', '.join(resumed)} was resumed and records its last session only)" if resumed else ""))
 
 
 def checks(report):
