@@ -30,11 +30,6 @@ double log_isotropic_normal(double dx, double dy, double s) {
   return -std::log(2.0 * std::numbers::pi * s) - 0.5 * (dx * dx + dy * dy) / s;
 }
 
-// μ_j(x) = (mean · g, 0), c_j(x) = variance · g + variance2 · g², g = g_j(x).
-struct SpreadCoefficients {
-  double mean, variance, variance2;
-};
-
 // One window cell's λ for every particle: the loops the passes spend their time in, written so
 // that they vectorise (no calls, no branches; portable_exp). Each adds −½(quad − quad0) to
 // total[i] and multiplies det/det0 into product[i]; with kOwn it also stores
@@ -93,26 +88,16 @@ void isotropic_cell_log_ratios(const CellMessages::CellTerms& t, const SpreadCoe
 void CellMessages::configure(const TbdSensor& sensor, double amplitude, double support_radius) {
   sensor_ = &sensor;
   support_radius_ = support_radius;
-  // μ_j and c_j as functions of g_j (problem.hpp: D1 and D2).
-  const CellContribution unit = [&] {
-    TbdSensor centred = sensor;
-    centred.x_min = centred.y_min = 0.0;
-    return centred.contribution(0, 0, 0.5 * sensor.cell_size, 0.5 * sensor.cell_size, amplitude);  // g = 1
-  }();
-  mean_per_spread_ = unit.mean.x();
-  variance_per_spread_ = sensor.signal == TbdSignal::fluctuating ? unit.variance : 0.0;
-  variance_per_spread2_ = sensor.signal == TbdSignal::fluctuating ? 0.0 : unit.variance;
+  const SpreadCoefficients k = sensor.coefficients(amplitude);  // μ_j and c_j as functions of g_j
+  mean_per_spread_ = k.mean;
+  variance_per_spread_ = k.variance;
+  variance_per_spread2_ = k.variance2;
 }
 
 bool CellMessages::run(const TbdSensor& sensor, double amplitude, const Eigen::Matrix2Xd& frame,
                        const std::vector<ParticleObject*>& objects, const CellMessageOptions& options) {
-  configure(sensor, amplitude, options.support_radius);
-  frame_ = &frame;
-  outgoing_moments_ready_ = false;
+  begin(sensor, amplitude, frame, objects, options.support_radius);
   const int count = static_cast<int>(objects.size());
-  objects_.assign(objects.begin(), objects.end());
-  if (static_cast<int>(work_.size()) < count) work_.resize(count);
-  for (int n = 0; n < count; ++n) prepare(*objects[n], work_[n]);
   if (options.exact) {
     for (int n = 0; n < count; ++n) {  // κ^(0) ≡ 1: the first exact pass reads the others' own factors
       std::fill_n(work_[n].own_factor.begin(), static_cast<std::size_t>(work_[n].window.cells()) * objects[n]->size(), 1.0);
@@ -127,26 +112,10 @@ bool CellMessages::run(const TbdSensor& sensor, double amplitude, const Eigen::M
       }
     }
   }
-  totals_.resize(sensor.cells());
   if (options.serial && !options.exact && options.interaction) {
-    // Serial schedule: the totals always hold every PO's newest message; PO n takes its own
-    // out, computes its κ̃ against the others, then puts its new extrinsic β back.
-    std::fill(totals_.begin(), totals_.end(), CellTotals{});
-    for (int n = 0; n < count; ++n) {
-      moments(*objects[n], work_[n], true);
-      accumulate(work_[n], 1.0);
-    }
-    for (int l = 1; l <= options.iterations; ++l) {
-      for (int n = 0; n < count; ++n) {
-        accumulate(work_[n], -1.0);
-        std::fill(work_[n].terms.begin(), work_[n].terms.end(), CellTerms{});
-        gaussian_log_ratios(*objects[n], work_[n], true, true);
-        moments(*objects[n], work_[n], false);
-        accumulate(work_[n], 1.0);
-      }
-    }
-    for (int n = 0; n < count; ++n) belief(*objects[n], work_[n]);
-    outgoing_moments_ready_ = true;  // each PO's last moments() followed its last λ: β^(L+1)
+    start_serial();
+    for (int l = 1; l <= options.iterations; ++l) serial_sweep();
+    finish_serial();
     return true;
   }
   const bool totals_needed = options.interaction || options.exact;
@@ -168,6 +137,59 @@ bool CellMessages::run(const TbdSensor& sensor, double amplitude, const Eigen::M
   return true;
 }
 
+void CellMessages::begin(const TbdSensor& sensor, double amplitude, const Eigen::Matrix2Xd& frame,
+                         const std::vector<ParticleObject*>& objects, double support_radius) {
+  configure(sensor, amplitude, support_radius);
+  frame_ = &frame;
+  outgoing_moments_ready_ = false;
+  objects_.assign(objects.begin(), objects.end());
+  const int count = static_cast<int>(objects.size());
+  if (static_cast<int>(work_.size()) < count) work_.resize(count);
+  for (int n = 0; n < count; ++n) prepare(*objects[n], work_[n]);
+  totals_.resize(sensor.cells());
+}
+
+void CellMessages::start_serial(const TbdSensor& sensor, double amplitude, const Eigen::Matrix2Xd& frame,
+                                const std::vector<ParticleObject*>& objects, double support_radius) {
+  begin(sensor, amplitude, frame, objects, support_radius);
+  start_serial();
+}
+
+// Serial schedule: the totals always hold every PO's newest message; PO n takes its own out,
+// computes its κ̃ against the others, then puts its new extrinsic β back.
+void CellMessages::start_serial() {
+  outgoing_moments_ready_ = false;
+  std::fill(totals_.begin(), totals_.end(), CellTotals{});
+  for (std::size_t n = 0; n < objects_.size(); ++n) {
+    moments(*objects_[n], work_[n], true);
+    accumulate(work_[n], 1.0);
+  }
+}
+
+void CellMessages::serial_sweep() {
+  for (std::size_t n = 0; n < objects_.size(); ++n) {
+    leave_field(work_[n]);
+    gaussian_log_ratios(*objects_[n], work_[n], true, true);
+    moments(*objects_[n], work_[n], false);
+    accumulate(work_[n], 1.0);
+  }
+}
+
+void CellMessages::finish_serial() {
+  for (std::size_t n = 0; n < objects_.size(); ++n) belief(*objects_[n], work_[n]);
+  outgoing_moments_ready_ = true;  // each PO's last moments() followed its last λ: β^(L+1)
+}
+
+void CellMessages::leave_field(Work& work) {
+  accumulate(work, -1.0);
+  std::fill(work.terms.begin(), work.terms.end(), CellTerms{});
+}
+
+void CellMessages::enter_field(const ParticleObject& object, Work& work) {
+  moments(object, work, false);
+  accumulate(work, 1.0);
+}
+
 void CellMessages::outgoing_field() {
   std::fill(totals_.begin(), totals_.end(), CellTotals{});
   for (std::size_t n = 0; n < objects_.size(); ++n) {
@@ -176,9 +198,9 @@ void CellMessages::outgoing_field() {
   }
 }
 
-double CellMessages::evaluate(const ParticleObject& object, Work& work, bool interaction) {
+double CellMessages::evaluate(const ParticleObject& object, Work& work, bool interaction, bool own_factors) {
   std::fill(work.terms.begin(), work.terms.end(), CellTerms{});  // its own terms: not in the field
-  gaussian_log_ratios(object, work, interaction, false);
+  gaussian_log_ratios(object, work, interaction, own_factors);
   belief(object, work);
   return work.log_odds;
 }

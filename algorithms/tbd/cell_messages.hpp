@@ -109,7 +109,22 @@ class CellMessages {
   // One new PO, prepared, against the field (κ̃) of the last run()'s frame — or, with
   // `interaction` false, against the frame alone: fills Σ_j λ and the log-odds in `work` and
   // returns the belief's log r̃/(1 − r̃).
-  double evaluate(const ParticleObject& object, Work& work, bool interaction);
+  // With `own_factors`, also keeps exp(−λ) per cell and particle, for enter_field().
+  double evaluate(const ParticleObject& object, Work& work, bool interaction, bool own_factors = false);
+  // The serial schedule in parts, so that TbdBp's joint schedule can put its new POs between
+  // the sweeps: start_serial() prepares `objects` and puts their α moments (β^(1)) into the
+  // field; each serial_sweep() is one iteration ℓ over them in order (each takes its own message
+  // out, computes κ̃ against the field, puts its new extrinsic β back); finish_serial() forms
+  // their beliefs (total_log_ratio, existence_log_odds). Whatever else is in the field when a
+  // sweep runs — new POs put there by enter_field() — is part of what the POs see.
+  void start_serial(const TbdSensor& sensor, double amplitude, const Eigen::Matrix2Xd& frame,
+                    const std::vector<ParticleObject*>& objects, double support_radius);
+  void serial_sweep();
+  void finish_serial();
+  // A new PO evaluated with own_factors: its extrinsic messages β_{n,j} ∝ α Π_{j'≠j} κ̃ (cell j's
+  // own factor excluded) enter the field; leave_field() takes them out again.
+  void enter_field(const ParticleObject& object, Work& work);
+  void leave_field(Work& work);
   // Adds the belief of an evaluated PO (existence r̃ = logistic(work.log_odds)) to the field.
   void add_to_field(const ParticleObject& object, const Work& work);
   // out[i] = Σ_j λ_{n,j} at the positions of `object`'s particles (not those of the evaluated
@@ -125,6 +140,10 @@ class CellMessages {
 
   // β moments of a PO per window cell: α (from_prior), else the extrinsic β from its λ.
   void moments(const ParticleObject& object, Work& work, bool from_prior);
+  // run()'s and start_serial()'s set-up: sensor, frame, the POs' windows and tables.
+  void begin(const TbdSensor& sensor, double amplitude, const Eigen::Matrix2Xd& frame,
+             const std::vector<ParticleObject*>& objects, double support_radius);
+  void start_serial();
   // Adds (sign = +1) or removes the PO's cell terms to or from totals_.
   void accumulate(const Work& work, double sign);
   // λ of every particle and window cell: Σ_j λ in work.total and, with own_factors, exp(−λ)

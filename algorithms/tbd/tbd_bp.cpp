@@ -25,6 +25,9 @@ std::string TbdBpOptions::validate() const {
     return "pruning_threshold must be in [0, detection_threshold)";
   }
   if (!(merge_distance >= 0.0 && merge_distance <= 100.0)) return "merge_distance must be in [0, 100]";
+  if (schedule == TbdBp::kJoint && (exact_kappa || !interaction)) {
+    return "schedule = joint exchanges kappa-tilde messages: it needs interaction = true and exact_kappa = false";
+  }
   return {};
 }
 
@@ -57,6 +60,40 @@ void TbdBp::make_new_objects() {
   for (ParticleObject& o : births_) o.existence = birth / (1.0 + birth);
 }
 
+double TbdBp::keep_log_odds() const {
+  return std::log(options_.pruning_threshold) - std::log1p(-options_.pruning_threshold);
+}
+
+// Step 3 of the header: screening against the field, then strongest first, each new PO
+// re-evaluated against the field with the new POs kept before it. `joint`: the new POs kept at
+// the previous iteration leave the field first, and a kept one enters with its extrinsic
+// (cell-excluded) messages; else with its belief.
+void TbdBp::new_object_stage(bool joint) {
+  const double keep = keep_log_odds();
+  if (joint) {
+    for (const int b : kept_births_) messages_.leave_field(birth_work_[b]);
+  }
+  kept_births_.clear();
+  order_.clear();
+  for (int b = 0; b < static_cast<int>(births_.size()); ++b) {
+    if (messages_.evaluate(births_[b], birth_work_[b], options_.interaction) >= keep) order_.push_back(b);
+  }
+  std::sort(order_.begin(), order_.end(), [&](int a, int b) {
+    const double la = birth_work_[a].log_odds, lb = birth_work_[b].log_odds;
+    return la != lb ? la > lb : a < b;
+  });
+  for (const int b : order_) {
+    if (joint) {
+      if (messages_.evaluate(births_[b], birth_work_[b], true, true) < keep) continue;
+      messages_.enter_field(births_[b], birth_work_[b]);
+    } else {
+      if (!kept_births_.empty() && messages_.evaluate(births_[b], birth_work_[b], options_.interaction) < keep) continue;
+      messages_.add_to_field(births_[b], birth_work_[b]);
+    }
+    kept_births_.push_back(b);
+  }
+}
+
 void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report) {
   const TbdProblem& problem = *problem_;
   const TbdSensor& sensor = problem.sensor;
@@ -67,49 +104,48 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
   }
   predict_objects(legacy_, problem, k, p, next_label_, rng_);
 
-  // 1. Legacy POs: L iterations among themselves (serial or flooding schedule).
+  // 1-2. Legacy POs: L iterations among themselves (serial or flooding), then the new POs; or,
+  //      joint, L iterations of both.
   all_.clear();
   for (ParticleObject& o : legacy_) all_.push_back(&o);
-  CellMessageOptions message_options;
-  message_options.iterations = options_.iterations;
-  message_options.support_radius = support_radius();
-  message_options.interaction = options_.interaction;
-  message_options.exact = options_.exact_kappa;
-  message_options.serial = options_.schedule == 0;
-  if (!messages_.run(sensor, problem.amplitude, problem.frames[k], all_, message_options)) {
-    report.skipped = "exact_kappa: a data cell is reached by more than two potential objects";
-    return;
+  const int legacy_count = static_cast<int>(legacy_.size());
+  kept_births_.clear();
+  if (options_.schedule == kJoint) {
+    messages_.start_serial(sensor, problem.amplitude, problem.frames[k], all_, support_radius());
+    for (int l = 1; l <= options_.iterations; ++l) {
+      messages_.serial_sweep();
+      if (!births_.empty()) new_object_stage(true);
+    }
+    messages_.finish_serial();
+  } else {
+    CellMessageOptions message_options;
+    message_options.iterations = options_.iterations;
+    message_options.support_radius = support_radius();
+    message_options.interaction = options_.interaction;
+    message_options.exact = options_.exact_kappa;
+    message_options.serial = options_.schedule == kSerial;
+    if (!messages_.run(sensor, problem.amplitude, problem.frames[k], all_, message_options)) {
+      report.skipped = "exact_kappa: a data cell is reached by more than two potential objects";
+      return;
+    }
+    if (!births_.empty()) {
+      messages_.outgoing_field();
+      new_object_stage(false);
+    }
   }
   report.iterations = options_.iterations;
-
-  // 2. New POs, serially: each against the legacy POs' messages and the new POs kept before it.
-  const int legacy_count = static_cast<int>(legacy_.size());
-  const double keep_log_odds = std::log(options_.pruning_threshold) - std::log1p(-options_.pruning_threshold);
-  if (!births_.empty()) {
-    messages_.outgoing_field();
-    order_.clear();
-    for (int b = 0; b < static_cast<int>(births_.size()); ++b) {
-      if (messages_.evaluate(births_[b], birth_work_[b], options_.interaction) >= keep_log_odds) order_.push_back(b);
-    }
-    std::sort(order_.begin(), order_.end(), [&](int a, int b) {
-      const double la = birth_work_[a].log_odds, lb = birth_work_[b].log_odds;
-      return la != lb ? la > lb : a < b;
-    });
-    bool field_changed = false;
-    for (const int b : order_) {
-      if (field_changed && messages_.evaluate(births_[b], birth_work_[b], options_.interaction) < keep_log_odds) continue;
-      legacy_.emplace_back();
-      ParticleObject& o = legacy_.back();
-      draw_in_cell(problem, b, p, rng_, o);
-      messages_.log_ratios_at(birth_work_[b], o, o.weight);
-      settle_drawn(o, logistic(birth_work_[b].log_odds), next_label_++, rng_, scratch_);
-      messages_.add_to_field(births_[b], birth_work_[b]);
-      field_changed = true;
-    }
+  // Kept new POs become legacy POs, in the order they were kept.
+  for (const int b : kept_births_) {
+    legacy_.emplace_back();
+    ParticleObject& o = legacy_.back();
+    draw_in_cell(problem, b, p, rng_, o);
+    messages_.log_ratios_at(birth_work_[b], o, o.weight);
+    settle_drawn(o, logistic(birth_work_[b].log_odds), next_label_++, rng_, scratch_);
   }
 
   // 3. Legacy POs of this step's run: belief, existence, prune, resample (the new POs
   //    appended after them are kept as they are).
+  const double keep_log_odds = this->keep_log_odds();
   keep_.assign(legacy_count, false);
   for (int n = 0; n < legacy_count; ++n) {
     ParticleObject& o = legacy_[n];

@@ -39,7 +39,17 @@
 //     of a PO already kept is deleted. Measured in results/tbd/REPORT.md: at L = 2 POs pile up
 //     where crossing objects were, each over-explained cell making the others' ratios near 1.
 //  6. Estimates: every PO with r̃ > detection_threshold, at its particle mean.
-// Cost per step: O(L Σ_n P |W_n| + J Q² |W|), linear in the number of POs (supplement §3).
+// Schedule `joint` [R], closer to the letter, where legacy and new POs are variables of one
+// factor graph and L counts its iterations: iteration ℓ is a serial sweep over the legacy POs
+// (as `serial`), then the new-PO stage of step 3, whose kept new POs enter the field with their
+// extrinsic messages β_{n,j} ∝ α_n Π_{j'≠j} κ̃_{n,j'} (cell-excluded, as every message of eqs (5),
+// (9)) instead of their beliefs; the new POs kept at ℓ − 1 leave the field before the stage at
+// ℓ is redone. So from ℓ = 2 on the legacy POs see the new POs' messages, and at L = 1 the step
+// is `serial` at L = 1 but for the cell exclusion of the new POs' messages. The new POs'
+// beliefs and the kept set are those of the last iteration. (Flooding over all POs, the letter's
+// schedule read literally, duplicates objects at L = 1 and oscillates at L = 2: step 3.)
+// Cost per step: O(L Σ_n P |W_n| + J Q² |W|) (`joint`: L J Q² |W|), linear in the number of POs
+// (supplement §3).
 // Runtime per step: bench/tbd/bench_tbd.cpp (tbd_bp_l1/*, tbd_bp_l2/*, by number of objects).
 // Particles: P = 2000 by default, not the 10 000 of the Meyer group's code ([K] of the notes):
 // the per-object cost is linear in P, and 2000 keeps TBD-BP at L = 2 within the 5 ms
@@ -65,7 +75,7 @@ struct TbdBpOptions {
   double pruning_threshold = 1e-4;   // delete r̃ below ([K])
   bool exact_kappa = false;          // exact κ of eq (5) instead of κ̃ (at most two POs per cell)
   bool interaction = true;           // false: the Σ_{n'≠n} terms of eqs (5), (9) are dropped
-  int schedule = 0;                  // legacy POs: 0 serial, 1 flooding (see the header)
+  int schedule = 0;                  // 0 serial, 1 flooding (legacy POs), 2 joint (see the header)
   double merge_distance = 0.0;       // m; > 0: of POs whose means are closer, keep the likeliest (off)
   std::int64_t seed = 0;             // stream selector
 
@@ -78,7 +88,8 @@ struct TbdBpOptions {
     p.add("pruning_threshold", pruning_threshold, "delete POs with existence below, in [0, detection_threshold)");
     p.add("exact_kappa", exact_kappa, "exact messages of eq (5) (small problems: at most two POs per cell)");
     p.add("interaction", interaction, "false drops the other POs' terms of eqs (5), (9)");
-    p.add_choice("schedule", schedule, {"serial", "flooding"}, "legacy POs' message schedule within an iteration");
+    p.add_choice("schedule", schedule, {"serial", "flooding", "joint"},
+                 "serial/flooding: L iterations among legacy POs, then the new POs; joint: L iterations of both");
     p.add("merge_distance", merge_distance, "delete a PO whose mean is within this distance (m) of a PO with higher existence, in [0, 100]; 0: off");
     p.add("seed", seed, "stream selector: another value draws other particles on the same trial");
   }
@@ -92,6 +103,8 @@ class TbdBp final : public TbdTracker {
   static constexpr std::string_view kSummary =
       "TBD-BP (Liang, Kropfreiter & Meyer 2023): particle BP with the Gaussian messages of eqs (5), (9)";
 
+  static constexpr int kSerial = 0, kFlooding = 1, kJoint = 2;  // TbdBpOptions::schedule
+
   explicit TbdBp(const Options& options) : options_(options) {}
   void start(const TbdProblem& problem) override;
   void step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report) override;
@@ -103,6 +116,8 @@ class TbdBp final : public TbdTracker {
 
  private:
   void make_new_objects();
+  void new_object_stage(bool joint);
+  double keep_log_odds() const;  // log-odds of pruning_threshold
   void merge_duplicates();
   double support_radius() const;  // window margin, m
 
@@ -115,6 +130,7 @@ class TbdBp final : public TbdTracker {
   std::vector<CellMessages::Work> birth_work_;
   std::vector<ParticleObject*> all_;
   std::vector<int> order_;
+  std::vector<int> kept_births_;          // new POs kept this step, in the order they were kept
   std::vector<bool> keep_;                // per legacy PO of this step's run
   std::vector<Eigen::Vector2d> kept_means_;  // merge_distance: means of the POs kept so far
   ParticleObject scratch_;

@@ -266,13 +266,10 @@ IembWindow iemb_window(const TbdSensor& sensor, const Eigen::Vector4d& mean, con
 
 IembCellModel::IembCellModel(const TbdSensor& sensor, double amplitude, IembMeasurementKind kind)
     : sensor_(&sensor), kind_(kind) {
-  // harness/tbd/problem.hpp, TbdSensor::contribution: D1 μ = 0, c = σ_S² γ/2 g; D2 μ = (γΔ²/(2πσ_h²) g, 0), c = σ_S² g².
-  if (sensor.signal == TbdSignal::fluctuating) {
-    variance_per_spread_ = sensor.signal_scale * 0.5 * amplitude;
-  } else {
-    mean_per_spread_ = amplitude * sensor.cell_size * sensor.cell_size / (2.0 * std::numbers::pi * sensor.spread_variance);
-    variance_per_spread2_ = sensor.signal_scale;
-  }
+  const SpreadCoefficients k = sensor.coefficients(amplitude);  // harness/tbd/problem.hpp: the readings
+  mean_per_spread_ = k.mean;
+  variance_per_spread_ = k.variance;
+  variance_per_spread2_ = k.variance2;
 }
 
 void IembCellModel::evaluate(const SigmaPoints& sigma, const IembWindow& window, SigmaMatrix& h,
@@ -453,12 +450,12 @@ std::string TbdIembOptions::validate() const {
 void TbdIemb::start(const TbdProblem& problem) {
   problem_ = &problem;
   const TbdSensor& sensor = problem.sensor;
-  const bool d1 = sensor.signal == TbdSignal::fluctuating;
-  IembMeasurementKind kind = d1 ? IembMeasurementKind::power : IembMeasurementKind::complex;
+  const bool zero_mean = sensor.coefficients(problem.amplitude).mean == 0.0;  // D1 (or D3 with ρ = 0)
+  IembMeasurementKind kind = zero_mean ? IembMeasurementKind::power : IembMeasurementKind::complex;
   if (options_.measurement == 1) kind = IembMeasurementKind::complex;
   if (options_.measurement == 2) kind = IembMeasurementKind::power;
-  skip_ = kind == IembMeasurementKind::power && !d1;
-  skip_reason_ = skip_ ? "measurement=power needs reading D1 (mu_j = 0); this problem is D2" : "";
+  skip_ = kind == IembMeasurementKind::power && !zero_mean;
+  skip_reason_ = skip_ ? "measurement=power needs a zero-mean reading (D1); this problem's signal has a mean (D2, D3)" : "";
   model_ = IembCellModel(sensor, problem.amplitude, kind);
   margin_ = options_.support_sigmas * std::sqrt(sensor.spread_variance);
   next_label_ = 0;

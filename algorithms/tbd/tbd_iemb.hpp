@@ -67,7 +67,7 @@
 //  7. Estimates: every Bernoulli with r ≥ detection_threshold (0.5 [C]), at its mean.
 //
 // The measurement (`measurement` option) [R] — tbd-bp-model.md §1.3:
-//  - complex (reading D2's default): z_j ∈ R² itself, two rows per cell. h_j(x) = μ_j(x), and
+//  - complex (the default of D2 and D3, the readings with a mean): z_j ∈ R² itself, two rows per cell. h_j(x) = μ_j(x), and
 //    Cov(z_j | x) = (σ² + c_j(x)) I₂ + S_corr,j; absent: N(z_j; z_corr,j, σ² I₂ + S_corr,j).
 //  - power (reading D1's default): under D1, μ_j ≡ 0, so E[z_j | x] = 0 carries no position
 //    information — the SLR gives A = 0 and the mean would never move. The cell powers
@@ -79,7 +79,7 @@
 //    (law of total variance: E[s²] + Var s = (E s)² + 2 Var s) — power_moments(). Absent:
 //    c_j = 0. The cells stay conditionally independent given the objects (the others'
 //    cross-cell terms are dropped as above). Power needs D1 (μ_j = 0: under D2 the objects'
-//    means would interfere in ‖z_j‖²); a D2 problem with measurement=power is skipped.
+//    means would interfere in ‖z_j‖²); a D2 or D3 problem with measurement=power is skipped.
 //    Under D1, measurement=complex is allowed: its means never move (A = 0), only r updates.
 //  - power_likelihood [R] (power only): `gaussian` takes L₁, L₀ from the IPLF's Gaussians as
 //    [C] does; `gamma` (default) keeps the IPLF's state update and moments but takes each

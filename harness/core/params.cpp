@@ -82,7 +82,9 @@ void ParamList::assign(std::string_view key, std::string_view value, std::string
   std::visit(
       [&](auto* field) {
         using T = std::remove_pointer_t<decltype(field)>;
-        if constexpr (std::is_same_v<T, double>) {
+        if constexpr (std::is_same_v<T, std::string>) {
+          *field = std::string(trim(value));
+        } else if constexpr (std::is_same_v<T, double>) {
           if (!parse_double(value, *field)) throw bad("a finite number");
         } else if constexpr (std::is_same_v<T, bool>) {
           const std::string_view v = trim(value);
@@ -112,6 +114,8 @@ std::string ParamList::format(const Entry& entry) {
         using T = std::remove_pointer_t<decltype(field)>;
         if constexpr (std::is_same_v<T, bool>) {
           return *field ? "true" : "false";
+        } else if constexpr (std::is_same_v<T, std::string>) {
+          return *field;
         } else {
           return fmt::format("{}", *field);
         }
@@ -127,6 +131,7 @@ std::string ParamList::describe(std::string_view indent) const {
           using T = std::remove_pointer_t<decltype(field)>;
           if constexpr (std::is_same_v<T, double>) return "real";
           else if constexpr (std::is_same_v<T, bool>) return "bool";
+          else if constexpr (std::is_same_v<T, std::string>) return "text";
           else return "int";
         },
         entry.target);

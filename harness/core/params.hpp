@@ -20,7 +20,7 @@ struct KeyValue {
 
 class ParamList {
  public:
-  using Target = std::variant<int*, std::int64_t*, double*, bool*>;
+  using Target = std::variant<int*, std::int64_t*, double*, bool*, std::string*>;
   struct Entry {
     std::string key;
     Target target;
@@ -32,6 +32,9 @@ class ParamList {
   void add(std::string_view key, std::int64_t& field, std::string_view doc) { push(key, &field, doc); }
   void add(std::string_view key, double& field, std::string_view doc) { push(key, &field, doc); }
   void add(std::string_view key, bool& field, std::string_view doc) { push(key, &field, doc); }
+  // Text, e.g. a file path; the value is taken as written (trimmed). Commas cannot appear in a
+  // spec's value (they separate keys), so paths with commas are not expressible.
+  void add(std::string_view key, std::string& field, std::string_view doc) { push(key, &field, doc); }
   // A named choice, e.g. solver=newton|lbfgs|pdca: `field` holds the index of the chosen name.
   void add_choice(std::string_view key, int& field, std::vector<std::string> names, std::string_view doc) {
     push(key, &field, doc);

@@ -25,18 +25,27 @@
 
 namespace dabench {
 
-// How an object's signal enters a cell (tbd-bp-model.md §1.3). Both are isotropic in R²:
-// C_j(x) = c_j(x) I₂.
+// How an object's signal enters a cell (tbd-bp-model.md §1.3; results/tbd/REPORT.md, "The
+// readings"). All are isotropic in R²: C_j(x) = c_j(x) I₂, with g_j(p) = exp(−‖c_j − p‖²/(2σ_h²)),
+// c_j the cell centre.
 //  - fluctuating (D1): μ_j(x) = 0, c_j(x) = σ_S² (γ/2) g_j(p) — a Swerling-type amplitude whose
-//    power spreads over the cells by g_j(p) = exp(−‖c_j − p‖² / (2σ_h²)), c_j the cell centre.
+//    power spreads over the cells by g_j.
 //  - deterministic (D2): μ_j(x) = (γ ψ_j(p), 0) with ψ_j(p) = Δ²/(2πσ_h²) g_j(p), and a small
 //    c_j(x) = σ_S² g_j(p)² (that is σ_S² ψ_j² / ψ_max²).
-enum class TbdSignal { fluctuating, deterministic };
+//  - mixed (D3): a share ρ of the power in a mean along e₁, the rest fluctuating:
+//    μ_j(x) = (√(ργ) g_j(p), 0), c_j(x) = (1 − ρ) σ_S² (γ/2) g_j(p). ρ = 0 is D1; a cell-centred
+//    object puts E‖h_j‖² = γ in its cell at σ_S² = 1 for every ρ.
+enum class TbdSignal { fluctuating, deterministic, mixed };
 
 // One cell's share of one object: μ_j(x) and c_j(x) of C_j(x) = c_j(x) I₂.
 struct CellContribution {
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   double variance = 0.0;
+};
+
+// The readings as functions of g = g_j(p): μ_j = (mean · g, 0), c_j = variance · g + variance2 · g².
+struct SpreadCoefficients {
+  double mean = 0.0, variance = 0.0, variance2 = 0.0;
 };
 
 struct TbdSensor {
@@ -49,6 +58,7 @@ struct TbdSensor {
   double noise_variance = 1.0;   // σ²: C_ε = σ² I₂
   double signal_scale = 1.0;     // σ_S² (the supplement's Fig. 2 caption: σ_S² = 1)
   double spread_variance = 0.5;  // σ_h², m²: width of g_j
+  double mean_share = 0.0;       // ρ of D3 (ignored by D1, D2)
 
   int cells() const { return columns * rows; }
   // Cell j = row · columns + column; its centre c_j.
@@ -64,16 +74,24 @@ struct TbdSensor {
     const double dy = centre_y(row) - py;
     return std::exp(-(dx * dx + dy * dy) / (2.0 * spread_variance));
   }
+  SpreadCoefficients coefficients(double amplitude) const {
+    switch (signal) {
+      case TbdSignal::fluctuating:
+        return {0.0, signal_scale * 0.5 * amplitude, 0.0};
+      case TbdSignal::deterministic:
+        return {amplitude * cell_size * cell_size / (2.0 * std::numbers::pi * spread_variance), 0.0, signal_scale};
+      case TbdSignal::mixed:
+        return {std::sqrt(mean_share * amplitude), (1.0 - mean_share) * signal_scale * 0.5 * amplitude, 0.0};
+    }
+    return {};
+  }
   // μ_j(x) and c_j(x) for an object at (px, py) with amplitude γ.
   CellContribution contribution(int column, int row, double px, double py, double amplitude) const {
     const double g = spread(column, row, px, py);
+    const SpreadCoefficients k = coefficients(amplitude);
     CellContribution c;
-    if (signal == TbdSignal::fluctuating) {
-      c.variance = signal_scale * 0.5 * amplitude * g;
-    } else {
-      c.mean.x() = amplitude * cell_size * cell_size / (2.0 * std::numbers::pi * spread_variance) * g;
-      c.variance = signal_scale * g * g;
-    }
+    c.mean.x() = k.mean * g;
+    c.variance = (k.variance + k.variance2 * g) * g;
     return c;
   }
 };

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "harness/tbd/registry.hpp"
+#include "scenarios/tbd/magnitude_frame.hpp"
 
 namespace dabench {
 
@@ -25,7 +26,7 @@ constexpr int kToyObjects = 2;
 constexpr int kToySteps = 1;
 constexpr int kToyCells = 10;
 
-// Spreads σ_h² of the two readings (tbd-bp-model.md §1.3).
+// Spreads σ_h² of D1 and D2 (tbd-bp-model.md §1.3); D3's is kSpreadD3 (tbd.hpp).
 constexpr double kSpreadD1 = 0.5;
 constexpr double kSpreadD2 = 1.5;
 
@@ -91,6 +92,7 @@ std::string TbdImageOptions::validate() const {
   for (const std::string& why : {range("objects", objects, layout_kind() == TbdLayout::persistent ? 0 : 1, 1000), range("steps", steps, 1, 10000),
                                  range("columns", columns, 1, 1024), range("rows", rows, 1, 1024),
                                  range("cell_size", cell_size, 0, 1000, true), range("sigma_s2", sigma_s2, 0, 1e6),
+                                 range("mean_share", mean_share, 0, 1),
                                  range("noise_variance", noise_variance, 0, 1e6, true),
                                  range("spread_variance", spread_variance, 0, 1e6), range("amplitude", amplitude, 0, 1e6),
                                  range("driving_noise_variance", driving_noise_variance, 0, 100),
@@ -100,6 +102,8 @@ std::string TbdImageOptions::validate() const {
                                  range("birth_mean", birth_mean, 0, 1000), range("birth_speed_sd", birth_speed_sd, 0, 1000)}) {
     if (!why.empty()) return why;
   }
+  if (!frame.empty() && layout_kind() != TbdLayout::toy) return "frame (a file of cell magnitudes) needs layout = toy";
+  if (unread_magnitude > 1e6) return "unread_magnitude must be at most 1e6";
   if (layout_kind() == TbdLayout::toy) {
     // Each must be left at its default or set to the toy's value (see the header).
     const TbdImageOptions defaults;
@@ -120,7 +124,15 @@ std::string TbdImageOptions::validate() const {
 
 double TbdImageOptions::effective_spread_variance() const {
   if (spread_variance > 0.0) return spread_variance;
-  return signal_kind() == TbdSignal::fluctuating ? kSpreadD1 : kSpreadD2;
+  switch (signal_kind()) {
+    case TbdSignal::fluctuating:
+      return kSpreadD1;
+    case TbdSignal::deterministic:
+      return kSpreadD2;
+    case TbdSignal::mixed:
+      return kSpreadD3;
+  }
+  return kSpreadD1;
 }
 
 void add_tbd_objects(const TbdSensor& sensor, double amplitude, const std::vector<Eigen::Vector2d>& positions,
@@ -181,6 +193,12 @@ TbdImageScenario::TbdImageScenario(const Options& options) : options_(options) {
   sensor_.noise_variance = options_.noise_variance;
   sensor_.signal_scale = options_.sigma_s2;
   sensor_.spread_variance = options_.effective_spread_variance();
+  sensor_.mean_share = options_.mean_share;
+  if (!options_.frame.empty()) {
+    const double unread = options_.unread_magnitude >= 0.0 ? options_.unread_magnitude
+                                                           : std::sqrt(2.0 * std::numbers::ln2 * options_.noise_variance);
+    file_frame_ = read_magnitude_frame(options_.frame, sensor_.columns, sensor_.rows, unread).z;
+  }
 }
 
 void TbdImageScenario::generate(RandomStream& rng, TbdSample& sample) const {
@@ -262,7 +280,11 @@ void TbdImageScenario::generate(RandomStream& rng, TbdSample& sample) const {
     for (const TbdTruth::Object& object : truth.objects) {
       if (object.alive[k]) positions.push_back(object.states.col(k).head<2>());
     }
-    draw_tbd_frame(sensor_, o.amplitude, positions, rng, problem.frames[k]);
+    if (file_frame_.size() > 0) {
+      problem.frames[k] = file_frame_;
+    } else {
+      draw_tbd_frame(sensor_, o.amplitude, positions, rng, problem.frames[k]);
+    }
   }
 }
 

@@ -10,11 +10,15 @@
 //  - Frame k holds one z_j ∈ R² per cell, z_j = Σ_n h_{j,n} + σ ε_j, h_{j,n} ~ N(μ_j(x_n), c_j I₂)
 //    over the objects n existing at k, ε_j ~ N(0, I₂), all independent ([S] eq (1), §1.1).
 //    Drawn as h = μ_j + √c_j · w with w ~ N(0, I₂) (TbdSensor::contribution).
-//  - Readings (§1.3, [R]): `signal` = d1 (fluctuating: μ_j = 0, c_j = σ_S² γ/2 g_j) or d2
-//    (deterministic: μ_j = (γ ψ_j, 0), small c_j). σ² = 1 [F] (the Rayleigh(1) background of
+//  - Readings (§1.3, [R]): `signal` = d1 (fluctuating: μ_j = 0, c_j = σ_S² γ/2 g_j), d2
+//    (deterministic: μ_j = (γ ψ_j, 0), small c_j) or d3 (mixed: μ_j = (√(ργ) g_j, 0),
+//    c_j = (1 − ρ) σ_S² γ/2 g_j; problem.hpp). σ² = 1 [F] (the Rayleigh(1) background of
 //    Fig. 2, §1.2), γ = 60 [S] (toy example), σ_S² = 1 [S] (Fig. 2 caption; its meaning is [R]).
 //    σ_h² = 0.5 m² for d1 and 1.5 m² for d2 [R] (§1.3: calibrated to the ≈180 excess energy of
-//    an isolated object in Fig. 2 [F]; d1 gives E Σ_j ‖h_j‖² = σ_S² γ 2πσ_h²/Δ² = 188.5).
+//    an isolated object in Fig. 2 [F]; d1 gives E Σ_j ‖h_j‖² = σ_S² γ 2πσ_h²/Δ² = 188.5);
+//    d3's ρ = 0.66 and σ_h² = 0.58 m² maximise the likelihood of the readable cells of Fig. 1(a)
+//    (Rice densities given the toy's objects) times that of Fig. 2's excess energy [F]
+//    (results/tbd/REPORT.md shows the fit and its profile over ρ).
 //  - Support: an object's contribution is added to the cells whose centre lies within 8 σ_h of
 //    it; beyond, g_j < e^{−32} ≈ 1.3·10⁻¹⁴ (for d1 a standard deviation √(30 g) < 10⁻⁶ against
 //    the noise's 1).
@@ -55,9 +59,13 @@
 //    4 / 10 m instead of 8 would give 0.77 / 0.95) [R].
 //  - layout = toy (supplement §1.3 [S]): 10 × 10 cells of 1 m, objects at (4, 4) and (5, 5) (cell
 //    corners) with zero velocity, one step. The problem carries the two POs' α as initial
-//    objects, N(p; p_n, 0.3 I₂) δ(v), existence 1, and birth_mean = 0 (no new POs). The option machinery cannot tell a key that was set
-//    from its default, so `objects`, `steps`, `columns`, `rows` and `cell_size` must each be
-//    its default or the toy's value (2, 1, 10, 10, 1); anything else is an error.
+//    objects, N(p; p_n, 0.3 I₂) δ(v), existence 1, and birth_mean = 0 (no new POs). The option
+//    machinery cannot tell a key that was set from its default, so `objects`, `steps`,
+//    `columns`, `rows` and `cell_size` must each be its default or the toy's value (2, 1, 10,
+//    10, 1); anything else is an error. With `frame` = a file (scenarios/tbd/magnitude_frame.hpp;
+//    experiments/data/tbd-fig1a-frame.csv is the supplement's Fig. 1(a) digitised), that frame
+//    replaces the drawn one (z_j = (|z_j|, 0); its unread cells get `unread_magnitude`, by
+//    default the background's median σ√(2 ln 2)) and nothing is drawn; `frame` needs layout = toy.
 //
 // The problem's filter model (TbdFilterModel, §2.3 [R]): p_s = 0.99, μ_B = 0.01, birth velocity
 // s.d. 0.3 m/s — what trackers assume, not what drew the truth.
@@ -70,6 +78,7 @@
 //       (position at m), uniform (heading), uniform (speed); then forward, then backward;
 //     persistent: uniform (x), uniform (y), uniform (heading), uniform (speed); then forward;
 //     toy: nothing.
+//  (toy with `frame`: no draws at all.)
 //     A propagation stops at the first step outside the region (no further draws).
 //  2. Frames, per step: per cell j = 0..J−1 two normals (σ ε_j, x then y); then per existing
 //     object in index order, per cell of its support in increasing j, two normals (w).
@@ -86,6 +95,11 @@ namespace dabench {
 
 enum class TbdLayout { crossing, persistent, toy };
 
+// D3's parameters, fitted to the supplement's Fig. 1(a) and Fig. 2 (results/tbd/REPORT.md,
+// "Calibration of D3"; reports/studies/tbd_calibration.py checks that they are the fit).
+constexpr double kMeanShareD3 = 0.66;
+constexpr double kSpreadD3 = 0.58;
+
 struct TbdImageOptions {
   int layout = 0;                       // crossing | persistent | toy (see the header)
   int objects = 5;                      // crossing: objects − 1 crossing + 1 slow; persistent: all
@@ -93,10 +107,11 @@ struct TbdImageOptions {
   int columns = 32;                     // cells along x [F]
   int rows = 32;                        // cells along y [F]
   double cell_size = 1.0;               // Δ, m [S]
-  int signal = 0;                       // d1 (fluctuating) | d2 (deterministic) [R]
+  int signal = 0;                       // d1 (fluctuating) | d2 (deterministic) | d3 (mixed) [R]
   double sigma_s2 = 1.0;                // σ_S² [S]
+  double mean_share = kMeanShareD3;     // ρ of d3: the share of the power in the mean [F: Fig. 1, 2 fit]
   double noise_variance = 1.0;          // σ², C_ε = σ² I₂ [F]
-  double spread_variance = 0.0;         // σ_h², m²; 0: the reading's own (d1 0.5, d2 1.5) [R]
+  double spread_variance = 0.0;         // σ_h², m²; 0: the reading's own (d1 0.5, d2 1.5, d3 0.58) [R]
   double amplitude = 60.0;              // γ [S]
   double driving_noise_variance = 0.01; // filter's σ_a², m²/s⁴ [R]
   double truth_noise_variance = 1e-4;   // truth's σ_a², m²/s⁴ [R]
@@ -104,6 +119,8 @@ struct TbdImageOptions {
   double survival_probability = 0.99;   // filter's p_s [R]
   double birth_mean = 0.01;             // filter's μ_B per step [R]
   double birth_speed_sd = 0.3;          // filter's birth velocity s.d., m/s [R]
+  std::string frame;                    // toy: a file of cell magnitudes replacing the drawn frame
+  double unread_magnitude = -1.0;       // toy frame file: value of its `nan` cells; < 0: σ√(2 ln 2)
 
   void bind(ParamList& p) {
     p.add_choice("layout", layout, {"crossing", "persistent", "toy"},
@@ -113,10 +130,12 @@ struct TbdImageOptions {
     p.add("columns", columns, "cells along x, in 1..1024");
     p.add("rows", rows, "cells along y, in 1..1024");
     p.add("cell_size", cell_size, "cell side, m, in (0, 1000]");
-    p.add_choice("signal", signal, {"d1", "d2"}, "d1: fluctuating (mu = 0); d2: deterministic mean");
+    p.add_choice("signal", signal, {"d1", "d2", "d3"},
+                 "d1: fluctuating (mu = 0); d2: deterministic mean; d3: mean share + fluctuation");
     p.add("sigma_s2", sigma_s2, "signal scale sigma_S^2, in [0, 1e6]");
+    p.add("mean_share", mean_share, "d3: share rho of the signal power in the mean, in [0, 1]");
     p.add("noise_variance", noise_variance, "noise variance sigma^2 per component, in (0, 1e6]");
-    p.add("spread_variance", spread_variance, "spread sigma_h^2, m^2, in [0, 1e6]; 0: d1 0.5, d2 1.5");
+    p.add("spread_variance", spread_variance, "spread sigma_h^2, m^2, in [0, 1e6]; 0: d1 0.5, d2 1.5, d3 0.58");
     p.add("amplitude", amplitude, "object amplitude gamma, in [0, 1e6]");
     p.add("driving_noise_variance", driving_noise_variance, "filter's acceleration variance, m^2/s^4, in [0, 100]");
     p.add("truth_noise_variance", truth_noise_variance, "truth's acceleration variance, m^2/s^4, in [0, 100]");
@@ -124,6 +143,8 @@ struct TbdImageOptions {
     p.add("survival_probability", survival_probability, "filter's survival probability, in [0, 1]");
     p.add("birth_mean", birth_mean, "filter's expected new objects per step, in [0, 1000]");
     p.add("birth_speed_sd", birth_speed_sd, "filter's birth velocity s.d., m/s, in [0, 1000]");
+    p.add("frame", frame, "toy: file of cell magnitudes (rows bottom first; nan = unread) replacing the drawn frame");
+    p.add("unread_magnitude", unread_magnitude, "toy frame file: magnitude given to nan cells; < 0: the background median");
   }
   std::string validate() const;  // "" if valid, else which field breaks which rule
 
@@ -170,6 +191,7 @@ class TbdImageScenario final : public TbdScenario {
  private:
   Options options_;
   TbdSensor sensor_;
+  Eigen::Matrix2Xd file_frame_;  // toy: the frame of options_.frame, if set
 };
 
 }  // namespace dabench

@@ -14,7 +14,8 @@
 namespace dabench::test {
 
 // One cell's μ_j and c_j (problem.hpp restated): g = exp(−‖c_j − p‖²/(2σ_h²)); D1: μ = 0,
-// c = σ_S² γ/2 g; D2: μ = (γ Δ²/(2πσ_h²) g, 0), c = σ_S² g².
+// c = σ_S² γ/2 g; D2: μ = (γ Δ²/(2πσ_h²) g, 0), c = σ_S² g²; D3: μ = (√(ργ) g, 0),
+// c = (1 − ρ) σ_S² γ/2 g.
 inline void cell_signal(const TbdSensor& s, double gamma, int column, int row, double px, double py,
                         Eigen::Vector2d& mu, double& c) {
   const double dx = s.x_min + (column + 0.5) * s.cell_size - px;
@@ -23,9 +24,12 @@ inline void cell_signal(const TbdSensor& s, double gamma, int column, int row, d
   if (s.signal == TbdSignal::fluctuating) {
     mu.setZero();
     c = s.signal_scale * 0.5 * gamma * g;
-  } else {
+  } else if (s.signal == TbdSignal::deterministic) {
     mu = Eigen::Vector2d(gamma * s.cell_size * s.cell_size / (2.0 * std::numbers::pi * s.spread_variance) * g, 0.0);
     c = s.signal_scale * g * g;
+  } else {
+    mu = Eigen::Vector2d(std::sqrt(s.mean_share * gamma) * g, 0.0);
+    c = (1.0 - s.mean_share) * s.signal_scale * 0.5 * gamma * g;
   }
 }
 

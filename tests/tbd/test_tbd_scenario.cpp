@@ -128,7 +128,7 @@ TEST_CASE("tbd scenario: given the truth every cell is N(m_j, s_j I) with the mo
   // m_j = Σ_n μ_j(x_n), s_j = σ² + Σ_n c_j(x_n) over the objects alive at k (every cell, no
   // support cut): ‖z_j − m_j‖²/(2 s_j) ~ Exp(1), and E Σ_j ‖z_j‖² = Σ_j (‖m_j‖² + 2 s_j) with
   // Var ‖z_j‖² = 4 s_j² + 4 s_j ‖m_j‖².
-  for (const char* signal : {"d1", "d2"}) {
+  for (const char* signal : {"d1", "d2", "d3"}) {
     const TbdImageScenario scenario = scenario_from({{"signal", signal}});
     const TbdSensor& sensor = scenario.sensor();
     const double gamma = scenario.options().amplitude;
@@ -249,6 +249,53 @@ TEST_CASE("tbd scenario: the d2 mean is (gamma psi_j(p), 0)", "[tbd][scenario]")
       CHECK(std::abs(mean.y()) < 5.0 * se);
     }
   }
+}
+
+TEST_CASE("tbd scenario: the d3 signal is a mean sqrt(rho gamma) g_j e_1 plus (1 - rho) of d1's fluctuation",
+          "[tbd][scenario]") {
+  // μ_j = (√(ργ) g, 0), c_j = (1 − ρ) σ_S² (γ/2) g: per cell E z = μ_j and E‖z − μ_j‖² = 2(σ² + c_j).
+  const TbdImageScenario scenario = scenario_from({{"signal", "d3"}, {"mean_share", "0.5"}, {"spread_variance", "0.6"}});
+  const TbdSensor& sensor = scenario.sensor();
+  REQUIRE(sensor.spread_variance == 0.6);
+  const Eigen::Vector2d p{16.3, 16.8};
+  constexpr int kDraws = 4000;
+  Eigen::Matrix2Xd sum = Eigen::Matrix2Xd::Zero(2, sensor.cells());
+  Eigen::VectorXd squares = Eigen::VectorXd::Zero(sensor.cells());
+  Eigen::Matrix2Xd frame;
+  for (int draw = 0; draw < kDraws; ++draw) {
+    RandomStream rng(kSeed, 5, draw);
+    dabench::draw_tbd_frame(sensor, 60.0, {p}, rng, frame);
+    sum += frame;
+    squares += frame.colwise().squaredNorm().transpose();
+  }
+  for (int row = 15; row <= 18; ++row) {
+    for (int column = 15; column <= 18; ++column) {
+      const double g = std::exp(-(std::pow(column + 0.5 - p.x(), 2) + std::pow(row + 0.5 - p.y(), 2)) / 1.2);
+      const double mu = std::sqrt(0.5 * 60.0) * g, c = 0.5 * 0.5 * 60.0 * g;
+      const double se = std::sqrt((1.0 + c) / kDraws);
+      const Eigen::Vector2d mean = sum.col(row * 32 + column) / kDraws;
+      const double energy = squares(row * 32 + column) / kDraws;
+      INFO("cell (" << column << ", " << row << "): mean " << mean.transpose() << " vs " << mu << ", E|z|^2 " << energy
+                    << " vs " << mu * mu + 2.0 * (1.0 + c));
+      CHECK(std::abs(mean.x() - mu) < 5.0 * se);
+      CHECK(std::abs(mean.y()) < 5.0 * se);
+      // Var ‖z‖² = 4 s² + 4 s μ² for z ~ N(μ, s I₂), s = 1 + c.
+      const double s = 1.0 + c;
+      CHECK(std::abs(energy - (mu * mu + 2.0 * s)) < 5.0 * std::sqrt((4.0 * s * s + 4.0 * s * mu * mu) / kDraws));
+    }
+  }
+  // ρ = 0 is d1, bit for bit (the same draws, the same contributions).
+  const TbdImageScenario d1 = scenario_from({{"signal", "d1"}, {"spread_variance", "0.6"}});
+  const TbdImageScenario d3 = scenario_from({{"signal", "d3"}, {"mean_share", "0"}, {"spread_variance", "0.6"}});
+  TbdSample a, b;
+  RandomStream rng_a(kSeed, 6, 0), rng_b(kSeed, 6, 0);
+  d1.generate(rng_a, a);
+  d3.generate(rng_b, b);
+  for (int k = 0; k < a.problem.steps(); ++k) CHECK(a.problem.frames[k] == b.problem.frames[k]);
+  // The defaults are the fit of results/tbd/REPORT.md (reports/studies/tbd_calibration.py).
+  const TbdImageScenario defaults = scenario_from({{"signal", "d3"}});
+  CHECK(defaults.sensor().mean_share == dabench::kMeanShareD3);
+  CHECK(defaults.sensor().spread_variance == dabench::kSpreadD3);
 }
 
 TEST_CASE("tbd scenario: crossing windows scale with the number of steps", "[tbd][scenario]") {
@@ -488,7 +535,10 @@ TEST_CASE("tbd scenario: bad options are one-line errors naming the field", "[tb
   CHECK_THAT(message({{"survival_probability", "1.5"}}), Contains("survival_probability"));
   CHECK_THAT(message({{"scan_interval", "0"}}), Contains("scan_interval"));
   CHECK_THAT(message({{"layout", "diagonal"}}), Contains("layout") && Contains("crossing, persistent, toy"));
-  CHECK_THAT(message({{"signal", "d3"}}), Contains("signal") && Contains("d1, d2"));
+  CHECK_THAT(message({{"signal", "d4"}}), Contains("signal") && Contains("d1, d2, d3"));
+  CHECK_THAT(message({{"mean_share", "1.5"}}), Contains("mean_share = 1.5"));
+  CHECK_THAT(message({{"frame", "experiments/data/tbd-fig1a-frame.csv"}}), Contains("frame") && Contains("layout = toy"));
+  CHECK_THAT(message({{"layout", "toy"}, {"frame", "/dev/zero"}}), Contains("/dev/zero: not a regular file"));
   CHECK_THAT(message({{"layout", "toy"}, {"objects", "3"}}), Contains("objects = 3") && Contains("toy"));
   CHECK_THAT(message({{"layout", "toy"}, {"rows", "12"}}), Contains("rows = 12") && Contains("toy"));
   CHECK_THAT(message({{"layout", "toy"}, {"steps", "5"}}), Contains("steps = 5"));
