@@ -31,6 +31,7 @@ std::string TbdMbOptions::validate() const {
   if (!(recycle_threshold > 0.0 && recycle_threshold < detection_threshold)) {
     return "recycle_threshold must be in (0, detection_threshold)";
   }
+  if (association < 0 || association > 1) return "association must be objects or none";
   return {};
 }
 
@@ -70,6 +71,21 @@ void TbdMb::add_node(const ParticleObject& object, const Eigen::Matrix2Xd& frame
   exclusion_.add(object.x.data(), object.y.data(), log_weight_.data(), object.size(), object.existence, pad);
 }
 
+// association = none: a Bernoulli's Bayes update with its separable likelihood alone — weights
+// w ℓ normalised, r̃ = r T / (r T + 1 − r), T = Σ w ℓ (in logs: ℓ reaches e^{±500}).
+double TbdMb::update_alone(ParticleObject& object, const Eigen::Matrix2Xd& frame) {
+  double top = kMinusInfinity;
+  log_weight_.resize(object.size());
+  for (int i = 0; i < object.size(); ++i) {
+    top = std::max(top, log_weight_[i] = std::log(object.weight[i]) + likelihood_.log_ratio(frame, object.x[i], object.y[i]));
+  }
+  double sum = 0.0;
+  for (int i = 0; i < object.size(); ++i) sum += object.weight[i] = std::exp(log_weight_[i] - top);
+  for (double& w : object.weight) w /= sum;
+  const double log_odds = std::log(object.existence) - std::log1p(-object.existence) + top + std::log(sum);
+  return logistic(log_odds);
+}
+
 void TbdMb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report) {
   const TbdProblem& problem = *problem_;
   const TbdSensor& sensor = problem.sensor;
@@ -83,10 +99,14 @@ void TbdMb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
   for (double& mass : undetected_) mass = survival * mass + birth;
 
   // 2.–3. Likelihoods and the exclusivity SPA: legacy Bernoullis, then the new Bernoulli of
-  //       every cell that could survive alone (log ξ_j = log Λ_j + log ℓ̄_j), strongest first.
+  //       every cell that could survive alone (log ξ_j = log Λ_j + log ℓ̄_j), strongest first
+  //       (association = none: no SPA; each Bernoulli's update alone below).
+  const bool exclusive = options_.association == kObjects;
   exclusion_.reset(sensor, likelihood_.radius());
   const int legacy_count = static_cast<int>(legacy_.size());
-  for (const ParticleObject& o : legacy_) add_node(o, frame, 0.0);
+  if (exclusive) {
+    for (const ParticleObject& o : legacy_) add_node(o, frame, 0.0);
+  }
   log_new_odds_.assign(sensor.cells(), kMinusInfinity);
   candidates_.clear();
   const double enter_log_odds = std::log(kEnterExistence / (1.0 - kEnterExistence));
@@ -105,20 +125,26 @@ void TbdMb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     return log_new_odds_[a] != log_new_odds_[b] ? log_new_odds_[a] > log_new_odds_[b] : a < b;
   });
   const double pad = 0.5 * sensor.cell_size / options_.birth_grid;  // the drawn particles fill the whole cell
-  for (const int j : candidates_) {
-    births_[j].existence = undetected_[j] / (1.0 + undetected_[j]);
-    add_node(births_[j], frame, pad);
+  if (exclusive) {
+    for (const int j : candidates_) {
+      births_[j].existence = undetected_[j] / (1.0 + undetected_[j]);
+      add_node(births_[j], frame, pad);
+    }
+    report.iterations = exclusion_.solve(options_.sweeps, kSweepTolerance);
+    report.converged = exclusion_.converged();
   }
-  report.iterations = exclusion_.solve(options_.sweeps, kSweepTolerance);
-  report.converged = exclusion_.converged();
 
   // 4.–5. Legacy Bernoullis: particles weighted by ℓ Π ν, existence r̃; below the recycling
   //       threshold their mass returns to the Poisson intensity (or is dropped).
   int kept = 0;
   for (int n = 0; n < legacy_count; ++n) {
     ParticleObject& o = legacy_[n];
-    exclusion_.posterior_weights(n, o.weight);
-    o.existence = exclusion_.existence(n);
+    if (exclusive) {
+      exclusion_.posterior_weights(n, o.weight);
+      o.existence = exclusion_.existence(n);
+    } else {
+      o.existence = update_alone(o, frame);
+    }
     if (o.existence < options_.recycle_threshold) {
       if (options_.recycling && o.existence > 0.0) recycle(o);
       continue;
@@ -136,7 +162,7 @@ void TbdMb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
   for (int c = 0; c < static_cast<int>(candidates_.size()); ++c) {
     const int j = candidates_[c];
     const int node = legacy_count + c;
-    const double existence = exclusion_.existence(node);
+    const double existence = exclusive ? exclusion_.existence(node) : logistic(log_new_odds_[j]);
     if (existence < options_.recycle_threshold) {
       undetected_[j] = options_.recycling ? existence : 0.0;
       continue;
@@ -145,7 +171,8 @@ void TbdMb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     ParticleObject& o = legacy_.back();
     draw_in_cell(problem, j, p, rng_, o);
     for (int i = 0; i < p; ++i) {
-      o.weight[i] = likelihood_.log_ratio(frame, o.x[i], o.y[i]) + exclusion_.log_message_at(node, o.x[i], o.y[i]);
+      o.weight[i] = likelihood_.log_ratio(frame, o.x[i], o.y[i]) +
+                    (exclusive ? exclusion_.log_message_at(node, o.x[i], o.y[i]) : 0.0);
     }
     settle_drawn(o, existence, next_label_++, rng_, scratch_);
     undetected_[j] = 0.0;

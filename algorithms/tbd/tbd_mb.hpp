@@ -34,6 +34,13 @@
 //     births only, as TBD-BP's new POs). Kept new Bernoullis get P particles drawn in their
 //     cell and weighted by ℓ Π ν (new_objects.hpp).
 //  6. Estimates: every Bernoulli with r̃ > detection_threshold, at its particle mean.
+// Reading `association` [R]: `objects` (default) is steps 3–4 as above; `none` skips the
+// exclusivity — every Bernoulli, legacy and each cell's new one, is updated alone with its
+// separable likelihood (weights w ℓ, r̃ = r T / (r T + 1 − r), T = Σ w ℓ; a new one r̃ = ξ_j /
+// (1 + ξ_j)), so nothing stops two Bernoullis from explaining one object. It is what the
+// supplement's evidence on TBD-MB may need: duplicates for Fig. 3's single run near GOSPA 10,
+// and a belief pulled towards a bright cell that another object shares (Fig. 1(d));
+// results/tbd/REPORT.md, "TBD-MB's readings", compares both with that evidence.
 // Randomness: RandomStream(algorithm_stream_seed(trial_key.seed, seed), point, trial).
 #include <string>
 #include <string_view>
@@ -55,6 +62,7 @@ struct TbdMbOptions {
   double detection_threshold = 0.5;  // report r̃ above
   double recycle_threshold = 0.1;    // Bernoullis below leave the multi-Bernoulli (Williams' hybrid PMB)
   bool recycling = true;             // their mass returns to the Poisson intensity (else dropped)
+  int association = 0;               // 0 objects: exclusivity by the SPA (step 3); 1 none: each Bernoulli alone
   std::int64_t seed = 0;             // stream selector
 
   void bind(ParamList& p) {
@@ -65,6 +73,8 @@ struct TbdMbOptions {
     p.add("detection_threshold", detection_threshold, "report Bernoullis with existence above, in (0, 1)");
     p.add("recycle_threshold", recycle_threshold, "Bernoullis with existence below leave the multi-Bernoulli, in (0, detection_threshold)");
     p.add("recycling", recycling, "their mass returns to the Poisson intensity of undetected objects (false: dropped)");
+    p.add_choice("association", association, {"objects", "none"},
+                 "objects: disjoint supports by the sum-product algorithm; none: every Bernoulli updated alone");
     p.add("seed", seed, "stream selector: another value draws other particles on the same trial");
   }
   std::string validate() const;  // "" if valid
@@ -78,6 +88,8 @@ class TbdMb final : public TbdTracker {
       "TBD-MB (Kropfreiter, Williams & Meyer 2021), reconstructed: particle PMB, likelihood on disjoint object "
       "supports, exclusivity by SPA, recycling";
 
+  static constexpr int kObjects = 0, kNone = 1;  // TbdMbOptions::association
+
   explicit TbdMb(const Options& options) : options_(options) {}
   void start(const TbdProblem& problem) override;
   void step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report) override;
@@ -89,6 +101,7 @@ class TbdMb final : public TbdTracker {
  private:
   int cell_of(double px, double py) const;  // −1 outside the region
   void recycle(const ParticleObject& object);
+  double update_alone(ParticleObject& object, const Eigen::Matrix2Xd& frame);  // returns r̃
   // Node of the exclusivity SPA from a Bernoulli's particles and log weights log w_p + log ℓ.
   void add_node(const ParticleObject& object, const Eigen::Matrix2Xd& frame, double pad);
 

@@ -1,9 +1,11 @@
 // Tests of the TBD-MB tracker (algorithms/tbd/tbd_mb.hpp, a reconstruction of tbd-bp-model.md
 // §4.1) on small hand-made problems (frames from tests/support/tbd_frames.hpp):
 //  - One Bernoulli and no births: the update is the exact Bayes update under the likelihood on
-//    the object's support, computed here from the model's equations on the same particles.
-//  - Exclusivity: two Bernoullis on one object's cell share it (r̃₁ + r̃₂ ≤ 1), where the
-//    non-interacting update makes both certain.
+//    the object's support, computed here from the model's equations on the same particles
+//    (with and without exclusivity: one Bernoulli has nothing to exclude).
+//  - Exclusivity: two Bernoullis on one object's cell share it (r̃₁ + r̃₂ ≤ 1), where
+//    association = none and the non-interacting TBD-BP update make both certain; without
+//    exclusivity the new Bernoullis around one object are each kept.
 //  - An object appearing in a static scene is born from the Poisson intensity, reported near
 //    the truth, and not duplicated in the neighbouring cells from its third step on.
 //  - Pure noise: no estimates; the Poisson mass stays below its noise-free bound; without
@@ -69,9 +71,10 @@ std::vector<std::vector<TbdEstimate>> run_all(dabench::TbdTracker& tracker, cons
 
 TEST_CASE("tbd-mb: one Bernoulli without births is the Bayes update with the support likelihood",
           "[tbd][tbd_mb]") {
+  for (const int association : {TbdMb::kObjects, TbdMb::kNone}) {  // one Bernoulli: nothing to exclude
   for (const bool present : {true, false}) {  // the object in the frame, or noise only (r̃ not near 1)
   for (const TbdSignal signal : {TbdSignal::fluctuating, TbdSignal::deterministic}) {
-    INFO("present " << present << ", signal " << static_cast<int>(signal));
+    INFO("association " << association << ", present " << present << ", signal " << static_cast<int>(signal));
     TbdProblem p = grid_problem(10, signal, kSeed, 3);
     p.filter.birth_mean = 0.0;
     const TbdPrior prior = prior_at(4.3, 5.6, 0.2, 0.6);
@@ -81,6 +84,7 @@ TEST_CASE("tbd-mb: one Bernoulli without births is the Bayes update with the sup
                                   present ? std::vector<Eigen::Vector2d>{{4.5, 5.5}} : std::vector<Eigen::Vector2d>{}, rng));
     TbdMbOptions options;
     options.particles = 500;
+    options.association = association;
     TbdMb mb(options);
     run_all(mb, p);
     if (!present && mb.objects().empty()) continue;  // recycled: r̃ below 0.1
@@ -119,6 +123,7 @@ TEST_CASE("tbd-mb: one Bernoulli without births is the Bayes update with the sup
     if (!present) CHECK(mb.objects()[0].existence < 0.99);
   }
   }
+  }
 }
 
 TEST_CASE("tbd-mb: two Bernoullis on one object's cell do not both stay; without exclusivity both are certain",
@@ -139,6 +144,15 @@ TEST_CASE("tbd-mb: two Bernoullis on one object's cell do not both stay; without
   REQUIRE(mb.objects().size() == 1);
   CHECK(mb.objects()[0].label == 0);
   CHECK(mb.objects()[0].existence > 0.99);
+
+  // association = none: each Bernoulli alone, both certain, both reported.
+  options.association = TbdMb::kNone;
+  TbdMb none(options);
+  const auto reported = run_all(none, p);
+  REQUIRE(none.objects().size() == 2);
+  CHECK(none.objects()[0].existence > 0.999);
+  CHECK(none.objects()[1].existence > 0.999);
+  CHECK(reported[0].size() == 2);
 
   dabench::TbdBpOptions alone;
   alone.particles = 400;
@@ -176,6 +190,28 @@ TEST_CASE("tbd-mb: an object appearing in a static scene is born, reported near 
       for (const TbdEstimate& e : estimates[k]) UNSCOPED_INFO("estimate " << e.state.head<2>().transpose() << " r " << e.existence << " label " << e.label);
       if (k >= 4) CHECK(estimates[k].size() == 1);
     }
+  }
+}
+
+TEST_CASE("tbd-mb: without exclusivity the new Bernoullis around one object are each kept (duplicates)",
+          "[tbd][tbd_mb]") {
+  // A static object at a cell centre, no prior: every new Bernoulli whose cell lies in its
+  // footprint sees the object alone (ξ_j = Λ_j ℓ̄_j ≫ 1), so several are kept at the first step
+  // with the object; with exclusivity (the default) one is.
+  for (std::uint32_t trial = 0; trial < 3; ++trial) {
+    INFO("trial " << trial);
+    TbdProblem p = grid_problem(12, TbdSignal::deterministic, kSeed, trial);
+    RandomStream rng(kSeed, 5, trial);
+    for (int k = 0; k < 3; ++k) p.frames.push_back(draw_frame(p.sensor, p.amplitude, {{6.5, 5.5}}, rng));
+    TbdMbOptions options;
+    options.particles = 500;
+    TbdMb exclusive(options);
+    options.association = TbdMb::kNone;
+    TbdMb none(options);
+    const auto one = run_all(exclusive, p), many = run_all(none, p);
+    CHECK(one[0].size() == 1);
+    CHECK(many[0].size() >= 2);
+    for (const TbdEstimate& e : many[0]) CHECK((e.state.head<2>() - Eigen::Vector2d(6.5, 5.5)).norm() < 1.5);
   }
 }
 
@@ -229,7 +265,7 @@ TEST_CASE("tbd-mb: same seed gives identical output; bad options are named", "[t
       CHECK(a[k][e].label == b[k][e].label);
     }
   }
-  for (const char* spec : {"tbd-mb:recycle_threshold=0.6", "tbd-mb:particles=5", "tbd-mb:recycled=1"}) {
+  for (const char* spec : {"tbd-mb:recycle_threshold=0.6", "tbd-mb:particles=5", "tbd-mb:recycled=1", "tbd-mb:association=cells"}) {
     const std::string message = dabench::test::input_error_message([&] { dabench::make_tbd_tracker(spec); });
     const std::string field = std::string(spec).substr(7, std::string(spec).find('=') - 7);
     CHECK_THAT(message, Catch::Contains(field));
