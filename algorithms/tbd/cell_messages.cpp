@@ -16,9 +16,14 @@ namespace {
 
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 
+// log(exp(extra) + Σ exp(values[i])); NaN if any value is NaN (a non-finite message or frame
+// must not read as an impossible PO).
 double log_sum_exp(const std::vector<double>& values, int count, double extra) {
   double top = extra;
-  for (int i = 0; i < count; ++i) top = std::max(top, values[i]);
+  for (int i = 0; i < count; ++i) {
+    if (std::isnan(values[i])) return std::numeric_limits<double>::quiet_NaN();
+    top = std::max(top, values[i]);
+  }
   if (top == kMinusInfinity) return kMinusInfinity;
   double sum = std::exp(extra - top);
   for (int i = 0; i < count; ++i) sum += std::exp(values[i] - top);

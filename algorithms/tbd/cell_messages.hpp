@@ -129,7 +129,9 @@ class CellMessages {
   void add_to_field(const ParticleObject& object, const Work& work);
   // out[i] = Σ_j λ_{n,j} at the positions of `object`'s particles (not those of the evaluated
   // PO `work`), under the messages evaluate() used and over its window: for the particles drawn
-  // when a new PO becomes a legacy PO. `out` may be object.weight.
+  // when a new PO becomes a legacy PO. `out` may be object.weight. It reads the κ̃ parameters
+  // (e, V) that evaluate() leaves in `work`: new POs are always evaluated with κ̃, and an exact
+  // run() leaves no such parameters for its POs.
   void log_ratios_at(const Work& work, const ParticleObject& object, std::vector<double>& out);
 
  private:

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
+
 #include "algorithms/tbd/new_objects.hpp"
 #include "harness/tbd/registry.hpp"
 
@@ -60,6 +62,12 @@ void TbdBp::make_new_objects() {
   for (ParticleObject& o : births_) o.existence = birth / (1.0 + birth);
 }
 
+// A NaN existence or weight means a message or the frame was not finite: the run records
+// "failed:" rather than pruning the PO as if it were unlikely.
+void TbdBp::fail(SolveReport& report, int k, const std::string& what) {
+  report.skipped = fmt::format("failed:step {}: {} is not finite (a message or the frame is not)", k + 1, what);
+}
+
 double TbdBp::keep_log_odds() const {
   return std::log(options_.pruning_threshold) - std::log1p(-options_.pruning_threshold);
 }
@@ -67,8 +75,9 @@ double TbdBp::keep_log_odds() const {
 // Step 3 of the header: screening against the field, then strongest first, each new PO
 // re-evaluated against the field with the new POs kept before it. `joint`: the new POs kept at
 // the previous iteration leave the field first, and a kept one enters with its extrinsic
-// (cell-excluded) messages; else with its belief.
-void TbdBp::new_object_stage(bool joint) {
+// (cell-excluded) messages; else with its belief. Returns the cell of a new PO whose existence
+// is NaN, else −1.
+int TbdBp::new_object_stage(bool joint) {
   const double keep = keep_log_odds();
   if (joint) {
     for (const int b : kept_births_) messages_.leave_field(birth_work_[b]);
@@ -76,7 +85,9 @@ void TbdBp::new_object_stage(bool joint) {
   kept_births_.clear();
   order_.clear();
   for (int b = 0; b < static_cast<int>(births_.size()); ++b) {
-    if (messages_.evaluate(births_[b], birth_work_[b], options_.interaction) >= keep) order_.push_back(b);
+    const double log_odds = messages_.evaluate(births_[b], birth_work_[b], options_.interaction);
+    if (std::isnan(log_odds)) return b;
+    if (log_odds >= keep) order_.push_back(b);
   }
   std::sort(order_.begin(), order_.end(), [&](int a, int b) {
     const double la = birth_work_[a].log_odds, lb = birth_work_[b].log_odds;
@@ -92,6 +103,7 @@ void TbdBp::new_object_stage(bool joint) {
     }
     kept_births_.push_back(b);
   }
+  return -1;
 }
 
 void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report) {
@@ -114,7 +126,9 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     messages_.start_serial(sensor, problem.amplitude, problem.frames[k], all_, support_radius());
     for (int l = 1; l <= options_.iterations; ++l) {
       messages_.serial_sweep();
-      if (!births_.empty()) new_object_stage(true);
+      if (const int cell = births_.empty() ? -1 : new_object_stage(true); cell >= 0) {
+        return fail(report, k, fmt::format("the new potential object of cell {}'s existence", cell));
+      }
     }
     messages_.finish_serial();
   } else {
@@ -130,7 +144,9 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     }
     if (!births_.empty()) {
       messages_.outgoing_field();
-      new_object_stage(false);
+      if (const int cell = new_object_stage(false); cell >= 0) {
+        return fail(report, k, fmt::format("the new potential object of cell {}'s existence", cell));
+      }
     }
   }
   report.iterations = options_.iterations;
@@ -150,12 +166,16 @@ void TbdBp::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
   for (int n = 0; n < legacy_count; ++n) {
     ParticleObject& o = legacy_[n];
     const double log_odds = messages_.existence_log_odds(n);
+    if (std::isnan(log_odds)) return fail(report, k, fmt::format("potential object {}'s existence", o.label));
     if (!(log_odds >= keep_log_odds)) continue;
     const std::vector<double>& total = messages_.total_log_ratio(n);
     double top = -std::numeric_limits<double>::infinity();
     for (int i = 0; i < o.size(); ++i) top = std::max(top, total[i]);
     double sum = 0.0;
     for (int i = 0; i < o.size(); ++i) sum += o.weight[i] *= std::exp(total[i] - top);
+    if (!(sum > 0.0 && sum < std::numeric_limits<double>::infinity())) {
+      return fail(report, k, fmt::format("potential object {}'s particle weights", o.label));
+    }
     for (double& w : o.weight) w /= sum;
     o.existence = logistic(log_odds);
     resample(o, p, rng_, scratch_);

@@ -116,7 +116,8 @@ class TbdBp final : public TbdTracker {
 
  private:
   void make_new_objects();
-  void new_object_stage(bool joint);
+  int new_object_stage(bool joint);
+  static void fail(SolveReport& report, int k, const std::string& what);
   double keep_log_odds() const;  // log-odds of pruning_threshold
   void merge_duplicates();
   double support_radius() const;  // window margin, m

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
+
 #include "algorithms/tbd/new_objects.hpp"
 #include "harness/tbd/registry.hpp"
 
@@ -71,6 +73,12 @@ void TbdMb::add_node(const ParticleObject& object, const Eigen::Matrix2Xd& frame
   exclusion_.add(object.x.data(), object.y.data(), log_weight_.data(), object.size(), object.existence, pad);
 }
 
+// A NaN existence means a likelihood or the frame was not finite: the run records "failed:"
+// rather than recycling the Bernoulli as if it were unlikely.
+void TbdMb::fail(SolveReport& report, int k, const std::string& what) {
+  report.skipped = fmt::format("failed:step {}: {} is not finite (a likelihood or the frame is not)", k + 1, what);
+}
+
 // association = none: a Bernoulli's Bayes update with its separable likelihood alone — weights
 // w ℓ normalised, r̃ = r T / (r T + 1 − r), T = Σ w ℓ (in logs: ℓ reaches e^{±500}).
 double TbdMb::update_alone(ParticleObject& object, const Eigen::Matrix2Xd& frame) {
@@ -119,6 +127,7 @@ void TbdMb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     double mean = 0.0;
     for (int i = 0; i < o.size(); ++i) mean += o.weight[i] * std::exp(log_weight_[i] - top);
     log_new_odds_[j] = std::log(undetected_[j]) + top + std::log(mean);
+    if (std::isnan(log_new_odds_[j])) return fail(report, k, fmt::format("the new Bernoulli of cell {}'s existence", j));
     if (log_new_odds_[j] >= enter_log_odds) candidates_.push_back(j);
   }
   std::sort(candidates_.begin(), candidates_.end(), [&](int a, int b) {
@@ -145,6 +154,7 @@ void TbdMb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     } else {
       o.existence = update_alone(o, frame);
     }
+    if (std::isnan(o.existence)) return fail(report, k, fmt::format("Bernoulli {}'s existence", o.label));
     if (o.existence < options_.recycle_threshold) {
       if (options_.recycling && o.existence > 0.0) recycle(o);
       continue;
@@ -163,6 +173,7 @@ void TbdMb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& report
     const int j = candidates_[c];
     const int node = legacy_count + c;
     const double existence = exclusive ? exclusion_.existence(node) : logistic(log_new_odds_[j]);
+    if (std::isnan(existence)) return fail(report, k, fmt::format("the new Bernoulli of cell {}'s existence", j));
     if (existence < options_.recycle_threshold) {
       undetected_[j] = options_.recycling ? existence : 0.0;
       continue;

@@ -102,6 +102,7 @@ class TbdMb final : public TbdTracker {
   int cell_of(double px, double py) const;  // −1 outside the region
   void recycle(const ParticleObject& object);
   double update_alone(ParticleObject& object, const Eigen::Matrix2Xd& frame);  // returns r̃
+  static void fail(SolveReport& report, int k, const std::string& what);
   // Node of the exclusivity SPA from a Bernoulli's particles and log weights log w_p + log ℓ.
   void add_node(const ParticleObject& object, const Eigen::Matrix2Xd& frame, double pad);
 

@@ -13,8 +13,7 @@
 //    log_ratios_at (the final messages at any positions).
 //  - With exact κ on a tree (two POs sharing one cell), L = 2 gives the exact marginals of the
 //    joint posterior, enumerated by brute force; a loopy pair differs (documented); a cell
-//    reached by three POs makes run() refuse; log_ratios_at after an exact run (known failure,
-//    tagged [!mayfail]).
+//    reached by three POs makes run() refuse.
 //  - interaction = false: a PO's λ does not depend on the other POs.
 #include <catch2/catch.hpp>
 
