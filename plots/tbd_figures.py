@@ -2,7 +2,8 @@
 """The track-before-detect figures (tbd-bp-supplement Figs 1-4; the letter's Fig. 2).
 
 Usage:
-  /usr/bin/python3 plots/tbd_figures.py toy RUN_DIR [--out FILE]       supplement Fig. 1
+  /usr/bin/python3 plots/tbd_figures.py toy RUN_DIR [--point P] [--out FILE]
+                                                                       supplement Fig. 1
   /usr/bin/python3 plots/tbd_figures.py run RUN_DIR [--point P] [--steps 14,21,27,43] [--out FILE]
                                                                        supplement Figs 2 and 3
   /usr/bin/python3 plots/tbd_figures.py gospa RUN_DIR [--point P] [--column gospa] [--out FILE]
@@ -11,9 +12,11 @@ Usage:
                                                                        supplement Fig. 4
 
 RUN_DIR is the output folder of `dabench run` on a track-before-detect experiment:
-  toy      (experiments/tbd-toy.ini, `beliefs = true`): the frame's cell magnitudes |z_j| with the
-           two objects, the prior alpha_1 (N(p_1, 0.3 I), drawn analytically) and, per tracker,
-           the belief of potential object 1 (label 0) as a 2-D histogram of beliefs.csv.
+  toy      (experiments/tbd-toy-fig1a.ini or tbd-toy.ini, `beliefs = true`): at one sweep point
+           (a reading), the frame's cell magnitudes |z_j| with the two objects, the prior alpha_1
+           (N(p_1, 0.3 I), drawn analytically) and, per tracker, the belief of potential object 1
+           (label 0) as a 2-D histogram of beliefs.csv over [3, 5]^2 as the supplement's panels,
+           with its mean and the supplement's read-off peak of the matching panel (d), (e), (f).
   run      trial 0 of a point: |z_j| of frames.csv at the given steps with the true tracks and
            positions (estimates.csv, algorithm `truth`) and each tracker's estimates at that
            step; and GOSPA over k of that trial per tracker (steps.csv).
@@ -90,17 +93,32 @@ def frame_image(frames, point, k):
     return image, columns, rows_
 
 
-def figure_toy(run, out):
+# The supplement's Fig. 1 (d), (e), (f): where PO 1's belief peaks, read off the panels (m);
+# reports/studies/tbd_toy.py holds the same readings for the REPORT's verdicts.
+FIG1_PEAKS = {"d": (4.47, 4.31), "e": (4.14, 4.13), "f": (4.25, 4.12)}
+
+
+def fig1_panel(spec):
+    """The supplement's panel a toy tracker corresponds to: (d) TBD-MB and the non-interacting
+    update, (e) κ̃, (f) exact κ."""
+    if spec.startswith("tbd-mb") or "interaction=false" in spec:
+        return "d"
+    return "f" if "exact_kappa=true" in spec else "e"
+
+
+def figure_toy(run, point, out):
     frames = rows(os.path.join(run, "frames.csv"))
     estimates = rows(os.path.join(run, "estimates.csv"))
-    beliefs = rows(os.path.join(run, "beliefs.csv"))
-    image, columns, rows_ = frame_image(frames, "0", 1)
-    truth = [(float(r["x"]), float(r["y"])) for r in estimates if r["algorithm"] == "truth"]
+    beliefs = [r for r in rows(os.path.join(run, "beliefs.csv")) if r["point"] == point]
+    image, columns, rows_ = frame_image(frames, point, 1)
+    truth = [(float(r["x"]), float(r["y"])) for r in estimates if r["algorithm"] == "truth" and r["point"] == point]
     trackers = list(dict.fromkeys(r["algorithm"] for r in beliefs))
     if len(truth) < 1 or not trackers:
-        fail("toy: estimates.csv needs the truth and beliefs.csv the trackers' beliefs (beliefs = true)")
+        fail(f"toy: point {point} needs the truth in estimates.csv and the trackers' beliefs in beliefs.csv (beliefs = true)")
+    reading = beliefs[0].get("signal", "")
     panels = 2 + len(trackers)
-    fig, axes = plt.subplots(1, panels, figsize=(3.3 * panels, 3.3), constrained_layout=True)
+    fig, axes = plt.subplots(1, panels, figsize=(3.3 * panels, 3.6), constrained_layout=True)
+    fig.suptitle(f"{os.path.basename(os.path.normpath(run))}, point {point}" + (f": reading {reading.upper()}" if reading else ""))
     ax = axes[0]
     shown = ax.imshow(image, origin="lower", extent=(0, columns, 0, rows_), cmap="viridis")
     ax.plot(*zip(*truth), "r.", markersize=6)
@@ -108,25 +126,29 @@ def figure_toy(run, out):
     fig.colorbar(shown, ax=ax, shrink=0.8)
     # alpha_1: N(p_1, 0.3 I) on a fine grid around object 1.
     p1 = truth[0]
-    lo_x, hi_x, lo_y, hi_y = p1[0] - 1.5, p1[0] + 1.5, p1[1] - 1.5, p1[1] + 1.5
+    lo_x, hi_x, lo_y, hi_y = p1[0] - 1.0, p1[0] + 1.0, p1[1] - 1.0, p1[1] + 1.0  # the supplement's [3, 5]^2
     n = 120
     grid = [[math.exp(-((lo_x + (i + 0.5) * (hi_x - lo_x) / n - p1[0]) ** 2 +
                         (lo_y + (j + 0.5) * (hi_y - lo_y) / n - p1[1]) ** 2) / (2 * 0.3))
              for i in range(n)] for j in range(n)]
-    axes[1].imshow(grid, origin="lower", extent=(lo_x, hi_x, lo_y, hi_y), cmap="viridis")
-    axes[1].set_title("(b) α₁(x, 1)")
+    axes[1].imshow(grid, origin="lower", extent=(lo_x, hi_x, lo_y, hi_y), cmap="jet")
+    axes[1].set_title("(c) α₁(x, 1)")
     for index, spec in enumerate(trackers):
         ax = axes[2 + index]
         samples = [r for r in beliefs if r["algorithm"] == spec and r["label"] == "0"]
         xs = [float(r["x"]) for r in samples]
         ys = [float(r["y"]) for r in samples]
         ws = [float(r["weight"]) for r in samples]
-        ax.hist2d(xs, ys, bins=60, range=[[lo_x, hi_x], [lo_y, hi_y]], weights=ws, cmap="viridis")
+        ax.hist2d(xs, ys, bins=50, range=[[lo_x, hi_x], [lo_y, hi_y]], weights=ws, cmap="jet")
         mx = sum(w * x for w, x in zip(ws, xs)) / sum(ws)
         my = sum(w * y for w, y in zip(ws, ys)) / sum(ws)
-        ax.plot([p1[0]], [p1[1]], "r+", markersize=10)
-        ax.set_title(f"({chr(ord('c') + index)}) {label(spec)}", fontsize=9)
-        print(f"{label(spec)}: belief mean of PO 1 ({mx:.3f}, {my:.3f}); truth ({p1[0]:.2f}, {p1[1]:.2f})")
+        panel = fig1_panel(spec)
+        peak = FIG1_PEAKS[panel]
+        ax.plot([peak[0]], [peak[1]], "wx", markersize=11, markeredgewidth=2.5, label=f"supplement's peak ({panel})")
+        ax.plot([mx], [my], "o", color="white", markeredgecolor="black", markersize=6, label="our mean")
+        ax.set_title(f"{label(spec)}", fontsize=8)
+        ax.legend(loc="lower right", fontsize=6, framealpha=0.6)
+        print(f"{label(spec)}: belief mean of PO 1 ({mx:.3f}, {my:.3f}); the supplement's peak ({panel}) {peak}")
     for ax in axes:
         ax.set_aspect("equal")
         ax.set_xlabel("x (m)")
@@ -258,7 +280,7 @@ def main():
     args = parser.parse_args()
     out = args.out or os.path.join(args.run_dir, f"tbd_{args.figure}.png")
     if args.figure == "toy":
-        figure_toy(args.run_dir, out)
+        figure_toy(args.run_dir, str(args.point), out)
     elif args.figure == "run":
         figure_run(args.run_dir, args.point, [int(k) for k in args.steps.split(",")], out)
     elif args.figure == "gospa":

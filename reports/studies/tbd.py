@@ -15,22 +15,37 @@ import csv
 import json
 import math
 import os
+import sys
 
 import numpy as np
 
 from reports.core import data, markdown, stats, verdicts
 from reports.core.study import Claim, Run, Step, Study
+from reports.studies import tbd_calibration, tbd_toy
 
 FOLDER = "results/tbd"
-TOY, GOSPA, RUNTIME, D2 = f"{FOLDER}/toy", f"{FOLDER}/gospa", f"{FOLDER}/runtime", f"{FOLDER}/d2"
+TOY, CALIBRATION = f"{FOLDER}/toy-fig1a", f"{FOLDER}/toy-calibration"
+GOSPA, JOINT, RUNTIME = f"{FOLDER}/gospa", f"{FOLDER}/gospa-joint", f"{FOLDER}/runtime"
+D2, D3, D1_WIDE = f"{FOLDER}/d2", f"{FOLDER}/d3", f"{FOLDER}/d1-wide"
 PARTICLES, SENSITIVITY, MERGE = f"{FOLDER}/particles", f"{FOLDER}/sensitivity", f"{FOLDER}/merge"
+MB_READINGS = f"{FOLDER}/mb-readings"
 BENCH = f"{FOLDER}/bench.json"
 
 RUNS = [
-    Run(TOY, "./build/dabench run experiments/tbd-toy.ini --force", "supplement Fig. 1: one frame"),
+    Run(TOY, "./build/dabench run experiments/tbd-toy-fig1a.ini --force",
+        "supplement Fig. 1 on its own frame, readings D1-D3"),
+    Run(CALIBRATION, "./build/dabench run experiments/tbd-toy-calibration.ini --force",
+        "Fig. 1(e) over D3's (rho, sigma_h^2) grid"),
     Run(GOSPA, "./build/dabench run experiments/tbd-gospa.ini --force", "letter's Fig. 2: 400 runs x 4 trackers"),
+    Run(JOINT, "./build/dabench run experiments/tbd-gospa-joint.ini --force",
+        "the joint schedule on the same 400 runs"),
     Run(RUNTIME, "./build/dabench run experiments/tbd-runtime.ini --force", "supplement Fig. 4: 20 runs per point"),
-    Run(D2, "./build/dabench run experiments/tbd-reading-d2.ini --force", "reading D2: 100 runs"),
+    Run(D2, "./build/dabench run experiments/tbd-reading-d2.ini --force", "reading D2: tbd-gospa's first 100 runs"),
+    Run(D3, "./build/dabench run experiments/tbd-reading-d3.ini --force", "reading D3: tbd-gospa's first 100 runs"),
+    Run(D1_WIDE, "./build/dabench run experiments/tbd-reading-d1-wide.ini --force",
+        "D1 with D3's sigma_h^2: the same 100 runs"),
+    Run(MB_READINGS, "./build/dabench run experiments/tbd-mb-readings.ini --force",
+        "TBD-MB without exclusivity on the same 400 runs"),
     Run(PARTICLES, "./build/dabench run experiments/tbd-particles.ini --force", "P = 2000 vs 10 000: 60 runs"),
     Run(SENSITIVITY, "./build/dabench run experiments/tbd-sensitivity.ini --force", "sigma_S^2 = 0.5, 2: 100 runs each"),
     Run(MERGE, "./build/dabench run experiments/tbd-merge.ini --force", "merge_distance = 1 m: 200 runs"),
@@ -38,12 +53,17 @@ RUNS = [
 FIGURES = "/usr/bin/python3 plots/tbd_figures.py"
 STEPS = [
     Step("/usr/bin/python3 reports/digest.py tbd", "runs.csv, steps-mean.csv, steps-paired.csv, beliefs-summary.csv"),
-    Step(f"{FIGURES} toy {TOY}", "Fig. 1"),
+    Step(f"{FIGURES} toy {TOY} --point 0 --out {TOY}/tbd_toy_d1.png", "Fig. 1 under D1"),
+    Step(f"{FIGURES} toy {TOY} --point 1 --out {TOY}/tbd_toy_d2.png", "Fig. 1 under D2"),
+    Step(f"{FIGURES} toy {TOY} --point 2 --out {TOY}/tbd_toy_d3.png", "Fig. 1 under D3"),
     Step(f"{FIGURES} gospa {GOSPA}", "the letter's Fig. 2"),
     Step(f"{FIGURES} gospa {GOSPA} --column gospa_p2 --out {GOSPA}/tbd_gospa_p2.png", "the same for p = 2"),
     Step(f"{FIGURES} run {GOSPA}", "Figs 2-3: run 0"),
     Step(f"{FIGURES} runtime {RUNTIME}", "Fig. 4"),
+    Step(f"{FIGURES} gospa {JOINT}"),
     Step(f"{FIGURES} gospa {D2}"),
+    Step(f"{FIGURES} gospa {D3}"),
+    Step(f"{FIGURES} gospa {D1_WIDE}"),
     Step(f"{FIGURES} gospa {SENSITIVITY} --point 0 --out {SENSITIVITY}/tbd_gospa_sigma05.png"),
     Step(f"{FIGURES} gospa {SENSITIVITY} --point 1 --out {SENSITIVITY}/tbd_gospa_sigma2.png"),
     Step(f"{FIGURES} gospa {MERGE}"),
@@ -55,28 +75,15 @@ STEPS = [
 # ----------------------------------------------------------------------------- trackers
 
 MB, IEMB, BP1, BP2 = "tbd-mb", "tbd-iemb", "tbd-bp:iterations=1", "tbd-bp:iterations=2"
+MB_NONE = "tbd-mb:association=none"
 MERGED = {1: "tbd-bp:iterations=1,merge_distance=1", 2: "tbd-bp:iterations=2,merge_distance=1"}
 MANY_PARTICLES = {1: "tbd-bp:iterations=1,particles=10000", 2: "tbd-bp:iterations=2,particles=10000"}
 BP = {1: BP1, 2: BP2}
-NAMES = {MB: "TBD-MB", IEMB: "TBD-IEMB", BP1: "TBD-BP L = 1", BP2: "TBD-BP L = 2",
+BPJ = {1: "tbd-bp:iterations=1,schedule=joint", 2: "tbd-bp:iterations=2,schedule=joint"}
+NAMES = {MB: "TBD-MB", MB_NONE: "TBD-MB without exclusivity", IEMB: "TBD-IEMB", BP1: "TBD-BP L = 1", BP2: "TBD-BP L = 2",
+         BPJ[1]: "TBD-BP L = 1 joint", BPJ[2]: "TBD-BP L = 2 joint",
          MERGED[1]: "TBD-BP L = 1 merged", MERGED[2]: "TBD-BP L = 2 merged"}
 
-# The toy's trackers (tbd-toy.ini) and the label of PO 1 in beliefs.csv.
-TOY_MB = "tbd-mb:particles=2000"
-TOY_FREE = "tbd-bp:iterations=1,interaction=false,particles=2000"
-TOY_APPROX = "tbd-bp:iterations=1,particles=2000"
-TOY_EXACT = "tbd-bp:iterations=1,exact_kappa=true,particles=2000"
-TOY_NAMES = {TOY_MB: "TBD-MB (our reconstruction)",
-             TOY_FREE: "TBD-BP without interaction (the notes' stand-in for TBD-MB)",
-             TOY_APPROX: "TBD-BP with κ̃ (eqs 5, 9)",
-             TOY_EXACT: "TBD-BP with the exact message κ (letter's eq (5))"}
-PO1 = "0"
-
-# ----------------------------------------------------------------------------- the paper's numbers
-
-# Supplement Fig. 1 (d), (e), (f): where the belief of PO 1 peaks, read off the panels (x, y) in m.
-FIG1_PEAKS = {"d": ("4.47", "4.31"), "e": ("4.14", "4.13"), "f": ("4.25", "4.12")}
-FIG1_READING_SE = 0.15  # m: reading a peak off a panel with 0.5 m ticks
 # Supplement Fig. 3 (single run): the largest GOSPA over k of each tracker, read off the curves.
 FIG3_PEAKS = {MB: "9.9", IEMB: "2.2", BP1: "2.0", BP2: "1.8"}
 FIG3_READING = 0.1  # GOSPA units: a reading error of about two pixels
@@ -95,6 +102,7 @@ TARGET_NEW_POS_S = 0.005
 EXCESS_STEPS = (10, 20, 25, 30, 32, 35, 40)
 EXCESS_COUNT_STEP = 32
 MERGE_TRIALS = 200  # tbd-merge.ini: the first 200 runs of tbd-gospa.ini
+MATCHED_RUNS = 100  # tbd-reading-*.ini: the first 100 runs of tbd-gospa.ini, under another reading
 SUPPORT_RADIUS_M = math.sqrt(2.0)  # TBD-MB's default support radius 2 sigma_h, sigma_h^2 = 0.5
 SPREAD_VARIANCE = 0.5  # sigma_h^2 of reading D1
 
@@ -102,16 +110,22 @@ SPREAD_VARIANCE = 0.5  # sigma_h^2 of reading D1
 
 RUN_COLUMNS = ["gospa", "gospa_p2", "localisation", "missed", "false", "n_objects", "n_estimates"]
 # Which digests each run folder gets: per-step means (steps-mean.csv) and per-step paired
-# differences (steps-paired.csv) between its trackers, or against a partner run's trackers on
-# the same trials (merge against gospa's first MERGE_TRIALS runs).
+# differences (steps-paired.csv) between its trackers and/or against a partner run's trackers on
+# the same trials (merge against gospa's first MERGE_TRIALS runs); and the toys' beliefs
+# (beliefs-summary.csv; with the KDE mode where asked).
 DIGESTS = [
-    (GOSPA, {"steps": True, "pairs": "within"}),
+    (GOSPA, {"steps": True, "pairs": "within", "first": MATCHED_RUNS}),
+    (JOINT, {"steps": True, "pairs": "within", "partner": (GOSPA, [MB, IEMB, BP1, BP2]), "first": MATCHED_RUNS}),
     (D2, {"pairs": "within"}),
+    (D3, {"pairs": "within"}),
+    (D1_WIDE, {"pairs": "within"}),
     (SENSITIVITY, {"pairs": "within"}),
     (PARTICLES, {}),
-    (MERGE, {"pairs": (GOSPA, [IEMB])}),
+    (MERGE, {"partner": (GOSPA, [IEMB])}),
+    (MB_READINGS, {"partner": (GOSPA, [MB, IEMB, BP1])}),
     (RUNTIME, {}),
 ]
+BELIEF_DIGESTS = [(TOY, True), (CALIBRATION, False)]
 
 
 def fmt(value):
@@ -234,6 +248,17 @@ def pairs_within(root, folder, tables):
     return out
 
 
+def first_trials(tables, first):
+    """The tables restricted to trials below `first` (all when None)."""
+    if first is None:
+        return tables
+    out = {}
+    for key, t in tables.items():
+        keep = [i for i, trial in enumerate(t["trials"]) if trial < first]
+        out[key] = {m: (v[keep] if m != "trials" else [v[i] for i in keep]) for m, v in t.items()}
+    return out
+
+
 def pairs_with_partner(tables, partner_tables, partners):
     out = []
     for (point, a), table_a in tables.items():
@@ -243,45 +268,8 @@ def pairs_with_partner(tables, partner_tables, partners):
     return out
 
 
-def belief_rows(root):
-    """beliefs-summary.csv of the toy: per (algorithm, label) the number of particles, the mean
-    existence, the weighted mean and s.d. of x and y, and, with the weights of identical particles
-    pooled (a resampled belief repeats particles), the effective sample size 1/sum(w^2) and the
-    Monte Carlo SE of the weighted mean, sqrt(sum w^2 (x - m)^2)."""
-    full = data.path(root, TOY, "beliefs.csv")
-    groups = {}
-    try:
-        with open(full, newline="", encoding="utf-8") as f:
-            for r in csv.DictReader(f):
-                groups.setdefault((r["algorithm"], r["label"]), []).append(
-                    (float(r["existence"]), float(r["x"]), float(r["y"]), float(r["weight"])))
-    except OSError as error:
-        raise data.DataError(f"{TOY}/beliefs.csv: {error.strerror}") from None
-    out = []
-    for (algorithm, label), samples in groups.items():
-        a = np.asarray(samples)
-        pooled = {}
-        for _, x, y, weight in samples:
-            pooled[(x, y)] = pooled.get((x, y), 0.0) + weight
-        xy = np.array(list(pooled.keys()))
-        w = np.array(list(pooled.values()))
-        w /= np.sum(w)
-        row = [algorithm, label, len(a), fmt(float(np.mean(a[:, 0]))), fmt(float(1.0 / np.sum(w * w)))]
-        moments = []
-        for column in (0, 1):
-            m = float(np.sum(w * xy[:, column]))
-            moments.append((m, math.sqrt(float(np.sum(w * (xy[:, column] - m) ** 2))),
-                            math.sqrt(float(np.sum(w * w * (xy[:, column] - m) ** 2)))))
-        out.append(row + [fmt(m[i]) for i in range(3) for m in moments])
-    return out
-
-
-BELIEFS_HEADER = ["algorithm", "label", "particles", "existence", "ess", "mean_x", "mean_y", "sd_x", "sd_y",
-                  "se_x", "se_y"]
-
-
 def digest(root):
-    """Write the digests of every run folder (see DIGESTS) and of the toy's beliefs; return the
+    """Write the digests of every run folder (see DIGESTS) and of the toys' beliefs; return the
     paths written."""
     written, parsed = [], {}
 
@@ -291,17 +279,28 @@ def digest(root):
         return parsed[folder]
 
     for folder, what in DIGESTS:
-        tables = tables_of(folder)
         base = data.path(root, folder)
+        if not os.path.exists(os.path.join(base, "steps.csv")) and os.path.exists(os.path.join(base, "runs.csv")):
+            print(f"{folder}: no steps.csv (not committed; rerun it to regenerate): its committed digests are kept",
+                  file=sys.stderr)
+            continue
+        tables = tables_of(folder)
         written.append(write_csv(os.path.join(base, "runs.csv"), RUNS_HEADER, runs_rows(tables)))
         if what.get("steps"):
             written.append(write_csv(os.path.join(base, "steps-mean.csv"), STEPS_HEADER, steps_rows(tables)))
-        pairs = what.get("pairs")
-        if pairs:
-            rows = (pairs_within(root, folder, tables) if pairs == "within"
-                    else pairs_with_partner(tables, tables_of(pairs[0]), pairs[1]))
-            written.append(write_csv(os.path.join(base, "steps-paired.csv"), PAIRS_HEADER, rows))
-    written.append(write_csv(data.path(root, TOY, "beliefs-summary.csv"), BELIEFS_HEADER, belief_rows(root)))
+        for name, first in (("steps-paired.csv", None), (f"steps-paired-{MATCHED_RUNS}.csv", what.get("first"))):
+            if name != "steps-paired.csv" and first is None:
+                continue
+            own = first_trials(tables, first)
+            rows = pairs_within(root, folder, own) if what.get("pairs") == "within" else []
+            if what.get("partner"):
+                partner, trackers = what["partner"]
+                rows += pairs_with_partner(own, first_trials(tables_of(partner), first), trackers)
+            if rows:
+                written.append(write_csv(os.path.join(base, name), PAIRS_HEADER, rows))
+    for folder, modes in BELIEF_DIGESTS:
+        written.append(write_csv(data.path(root, folder, "beliefs-summary.csv"), tbd_toy.BELIEFS_HEADER,
+                                 tbd_toy.belief_rows(root, folder, modes)))
     return written
 
 
@@ -363,10 +362,12 @@ class TbdData:
             return None
         return {int(r["k"]): r for r in rows if r["algorithm"] == algorithm and int(r["point"]) == point}
 
-    def step_diffs(self, folder, a, b, point=0):
+    def step_diffs(self, folder, a, b, point=0, first=None):
         """[(k, mean, se)] of GOSPA(a) - GOSPA(b) per step over paired runs (from steps-paired.csv,
-        which holds each pair once, in either order), or None without the digest."""
-        rows = self._read(folder, "steps-paired.csv", False)
+        which holds each pair once, in either order; over the first MATCHED_RUNS runs from
+        steps-paired-100.csv when first is given), or None without the digest."""
+        name = "steps-paired.csv" if first is None else f"steps-paired-{first}.csv"
+        rows = self._read(folder, name, False)
         if rows is None:
             return None
         out = []
@@ -377,15 +378,12 @@ class TbdData:
                 sign = 1.0 if r["a"] == a else -1.0
                 out.append((int(r["k"]), sign * data.num(r, "gospa_diff_mean"), data.num(r, "gospa_diff_se")))
         if not out:
-            raise data.DataError(f"{folder}/steps-paired.csv: no pair {a} / {b} at point {point}")
+            raise data.DataError(f"{folder}/{name}: no pair {a} / {b} at point {point}")
         return sorted(out)
 
-    def beliefs(self):
-        """{algorithm: beliefs-summary.csv row of PO 1}, or None without the digest."""
-        rows = self._read(TOY, "beliefs-summary.csv", False)
-        if rows is None:
-            return None
-        return {r["algorithm"]: r for r in rows if r["label"] == PO1}
+    def beliefs(self, folder):
+        """The rows of a toy run's beliefs-summary.csv, or None without the digest."""
+        return self._read(folder, "beliefs-summary.csv", False)
 
     def meta(self, folder):
         return data.read_meta(self.root, folder)
@@ -433,105 +431,6 @@ def ms(seconds, se=None):
     return markdown.pm(1e3 * seconds, None if se is None else 1e3 * se) + " ms"
 
 
-# ============================================================================= the toy (Fig. 1)
-
-
-def belief_point(row):
-    """((mean_x, mean_y), (se_x, se_y), (sd_x, sd_y), ess) of a beliefs-summary.csv row."""
-    f = lambda c: data.num(row, c)  # noqa: E731
-    return (f("mean_x"), f("mean_y")), (f("se_x"), f("se_y")), (f("sd_x"), f("sd_y")), f("ess")
-
-
-def toy_table(beliefs):
-    rows = []
-    for spec, name in TOY_NAMES.items():
-        if beliefs is None or spec not in beliefs:
-            rows.append([name, "not run", "not run"])
-            continue
-        mean, se, sd, _ = belief_point(beliefs[spec])
-        rows.append([name, f"({markdown.pm(mean[0], se[0])}, {markdown.pm(mean[1], se[1])})",
-                     f"({markdown.fixed(sd[0], 2)}, {markdown.fixed(sd[1], 2)})"])
-    return markdown.table(["tracker", "belief mean of PO 1 (x, y) in m", "belief s.d. (x, y) in m"], rows)
-
-
-def toy_peak_claim(beliefs, claim_id, panel, spec, what):
-    """Supplement Fig. 1 (panel): PO 1's belief peaks at the read-off point. Per coordinate,
-    compare_value of our belief mean (Monte Carlo SE over the particles) with the reading (its
-    error FIG1_READING_SE as the paper's SE); the claim's verdict is the worse coordinate."""
-    paper = FIG1_PEAKS[panel]
-    statement = f"Fig. 1({panel}): the belief of PO 1 by {what} peaks at ({paper[0]}, {paper[1]})"
-    rule = (f"per coordinate, our belief mean (± Monte Carlo SE over the particles) against the "
-            f"read-off peak with a reading SE of {FIG1_READING_SE} m (compare_value); the worse coordinate")
-    if beliefs is None or spec not in beliefs:
-        return Claim(claim_id, statement, "supplement Fig. 1", f"({paper[0]}, {paper[1]})", "not run",
-                     verdicts.NOT_RUN, rule)
-    mean, se, _, _ = belief_point(beliefs[spec])
-    parts = [verdicts.compare_value(mean[i], se[i], float(paper[i]), FIG1_READING_SE, paper[i])
-             for i in range(2)]
-    ours = (f"({markdown.fixed(mean[0], 2)}, {markdown.fixed(mean[1], 2)}), "
-            f"off by ({markdown.signed(parts[0][1], 2)}, {markdown.signed(parts[1][1], 2)}) m "
-            f"against a bound of {markdown.fixed(parts[0][2], 2)} m")
-    return Claim(claim_id, statement, "supplement Fig. 1", f"({paper[0]}, {paper[1]})", ours,
-                 verdicts.worst([p[0] for p in parts]), rule)
-
-
-def gaussian_distance(row_a, row_b):
-    """(W2, se) between the Gaussians with the two beliefs' means and (diagonal) s.d.s:
-    W2^2 = |m_a - m_b|^2 + sum (s_a - s_b)^2; its SE from the Monte Carlo SEs of the means and
-    of the s.d.s (s.d. / sqrt(2 ESS)), each counted in full (an upper bound)."""
-    ma, sa, da, ea = belief_point(row_a)
-    mb, sb, db, eb = belief_point(row_b)
-    w2 = math.sqrt(sum((ma[i] - mb[i]) ** 2 + (da[i] - db[i]) ** 2 for i in range(2)))
-    se = math.sqrt(sum(sa[i] ** 2 + sb[i] ** 2 + da[i] ** 2 / (2 * ea) + db[i] ** 2 / (2 * eb) for i in range(2)))
-    return w2, se
-
-
-def toy_similarity_claim(beliefs):
-    """Supplement Sec. 1.3: "the beliefs provided by (ii) [κ̃] and (iii) [exact κ] are very
-    similar, whereas the one provided by TBD-MB is quite different." On our frame: the distance
-    of TBD-MB's belief (our reconstruction, and the non-interacting stand-in) from the exact-κ
-    belief exceeds that of the κ̃ belief, beyond error (compare_direction on the difference)."""
-    statement = ("the beliefs with κ̃ and with the exact κ are very similar, TBD-MB's is quite different")
-    rule = ("on our frame: W2 distance (Gaussian, diagonal) of TBD-MB's belief from the exact-κ belief minus "
-            "that of the κ̃ belief > 0 beyond 2 SE (compare_direction), for our TBD-MB and the "
-            "non-interacting stand-in; the worse")
-    specs = (TOY_MB, TOY_FREE, TOY_APPROX, TOY_EXACT)
-    if beliefs is None or any(s not in beliefs for s in specs):
-        return Claim("T4", statement, "supplement Sec. 1.3", "–", "not run", verdicts.NOT_RUN, rule)
-    approx, approx_se = gaussian_distance(beliefs[TOY_APPROX], beliefs[TOY_EXACT])
-    parts, words = [], [f"κ̃ {markdown.fixed(approx, 2)} m"]
-    for spec, name in ((TOY_MB, "TBD-MB"), (TOY_FREE, "no interaction")):
-        far, far_se = gaussian_distance(beliefs[spec], beliefs[TOY_EXACT])
-        parts.append(verdicts.compare_direction(far - approx, math.hypot(far_se, approx_se), +1))
-        words.append(f"{name} {markdown.fixed(far, 2)} m")
-    return Claim("T4", statement, "supplement Sec. 1.3", "–",
-                 "distance from the exact-κ belief: " + ", ".join(words), verdicts.worst(parts), rule)
-
-
-def check_toy(report, d):
-    beliefs = d.beliefs()
-    report.value("toy.table", toy_table(beliefs))
-    claims = [toy_peak_claim(beliefs, "T1", "d", TOY_FREE, "TBD-MB (ours: TBD-BP without interaction)"),
-              toy_peak_claim(beliefs, "T1-mb", "d", TOY_MB, "TBD-MB (ours: our TBD-MB reconstruction)"),
-              toy_peak_claim(beliefs, "T2", "e", TOY_APPROX, "TBD-BP with κ̃"),
-              toy_peak_claim(beliefs, "T3", "f", TOY_EXACT, "TBD-BP with the exact κ"),
-              toy_similarity_claim(beliefs)]
-    for c in claims:
-        report.claim(c)
-    report.value("toy.claims", report.claims_table([c.id for c in claims]))
-    for spec, name in ((TOY_FREE, "free"), (TOY_MB, "mb")):
-        report.value(f"toy.{name}_pull", markdown.signed(toward_object2(beliefs, spec), 2))
-
-
-def toward_object2(beliefs, spec):
-    """How far (m) a belief's mean lies from the exact-κ belief's along the line from object 1
-    (4, 4) to object 2 (5, 5): positive towards object 2."""
-    if beliefs is None or spec not in beliefs or TOY_EXACT not in beliefs:
-        return math.nan
-    mean, exact = belief_point(beliefs[spec])[0], belief_point(beliefs[TOY_EXACT])[0]
-    return ((mean[0] - exact[0]) + (mean[1] - exact[1])) / math.sqrt(2.0)
-
-
 # ============================================================================= the letter's Fig. 2
 
 
@@ -567,57 +466,74 @@ def steps_words(counts, better, worse):
     return text
 
 
-def reading_claims(d, reading):
-    """The letter's and the supplement's statements on one run of the four trackers (a reading):
-    G1 TBD-MB worst, G2/G3 TBD-BP (L = 1 / 2) below TBD-IEMB at every k, G4 L = 2 below L = 1."""
-    suffix, folder, point = reading["suffix"], reading["folder"], reading["point"]
-    where = f"[{reading['label']}] " if suffix else ""
+def reading_claims(d, reading, joint=False):
+    """The letter's and the supplement's statements on one run of the trackers (a reading, under
+    a schedule): G1 TBD-MB worst, G2/G3 TBD-BP (L = 1 / 2) below TBD-IEMB at every k, G4 L = 2
+    below L = 1. `joint`: TBD-BP with the joint schedule (its runs in reading["joint"])."""
+    folder, point, first = reading["folder"], reading["point"], reading.get("first")
+    bp, bp_folder = (BPJ, reading["joint"]) if joint else (BP, folder)
+    suffix = reading["suffix"] + ("-joint" if joint else "")
+    where = f"[{reading['label']}{', joint' if joint else ''}] " if suffix else ""
+
+    def paired(fa, a, fb, b):
+        return paired_runs(d, fa, a, fb, b, point=point, below_trial=first)
+
     out = []
-    parts = [direction_over_runs(d, folder, MB, other, point) for other in (IEMB, BP1, BP2)]
+    parts = [(o, f, paired(folder, MB, f, o)) for o, f in ((IEMB, folder), (bp[1], bp_folder), (bp[2], bp_folder))]
+    verdict_parts = [verdicts.compare_direction(m, se, +1) for _, _, (m, se, _) in parts]
     out.append(Claim(
         f"G1{suffix}", where + "TBD-IEMB and TBD-BP perform significantly better than TBD-MB",
         "supplement Sec. 2, Fig. 3", "–",
-        "TBD-MB minus " + ", ".join(f"{NAMES[o]} {pm_signed(m, se)}" for o, (_, m, se) in zip((IEMB, BP1, BP2), parts)),
-        verdicts.worst(p[0] for p in parts),
+        "TBD-MB minus " + ", ".join(f"{NAMES[o]} {pm_signed(m, se)}" for o, _, (m, se, _) in parts),
+        verdicts.worst(verdict_parts),
         "paired run means (mean over k of GOSPA) of TBD-MB minus each other tracker > 0 beyond 2 SE "
         "(compare_direction); the worst of the three"))
-    for claim_id, bp in (("G2", BP1), ("G3", BP2)):
-        verdict, counts, _ = every_step(d.step_diffs(folder, IEMB, bp, point))
-        _, m, se = direction_over_runs(d, folder, IEMB, bp, point)
+    for claim_id, L in (("G2", 1), ("G3", 2)):
+        verdict, counts, _ = every_step(d.step_diffs(bp_folder, IEMB, bp[L], point, first))
+        m, se, _ = paired(folder, IEMB, bp_folder, bp[L])
         out.append(Claim(
-            f"{claim_id}{suffix}", where + f"{NAMES[bp]} outperforms TBD-IEMB for all time steps k",
+            f"{claim_id}{suffix}", where + f"{NAMES[bp[L]]} outperforms TBD-IEMB for all time steps k",
             "letter Fig. 2, quoted in supplement Sec. 2", "–",
-            steps_words(counts, bp, IEMB) + f"; mean over k: {NAMES[bp]} minus TBD-IEMB {pm_signed(-m, se)}",
+            steps_words(counts, bp[L], IEMB) + f"; mean over k: {NAMES[bp[L]]} minus TBD-IEMB {pm_signed(-m, se)}",
             verdict,
             "per k, paired difference of GOSPA over runs (TBD-IEMB minus TBD-BP) > 0 beyond 2 SE "
             "(compare_direction); the worst over k"))
-    m, se, _ = paired_runs(d, folder, BP2, folder, BP1, point=point)
-    counts = every_step(d.step_diffs(folder, BP1, BP2, point))[1]
+    m, se, _ = paired(bp_folder, bp[2], bp_folder, bp[1])
+    counts = every_step(d.step_diffs(bp_folder, bp[1], bp[2], point, first))[1]
     out.append(Claim(
         f"G4{suffix}", where + "TBD-BP with L = 2 has a lower averaged GOSPA than with L = 1 (what more "
         "message passing should give; the letter runs both L)", "ours", "–",
-        f"L = 2 minus L = 1 {pm_signed(m, se)}; " + steps_words(counts, BP2, BP1),
+        f"L = 2 minus L = 1 {pm_signed(m, se)}; " + steps_words(counts, bp[2], bp[1]),
         verdicts.compare_direction(m, se, -1),
         "paired run means of L = 2 minus L = 1 < 0 beyond 2 SE (compare_direction)"))
     return out
 
 
 def readings(d):
-    """Each run of the four trackers: D1 at sigma_S^2 = 0.5, 1, 2 and D2. The default
-    (tbd-gospa.ini) has no claim suffix."""
-    def reading(suffix, signal, scale, folder, point, note=""):
-        return {"suffix": suffix, "signal": signal, "scale": scale, "label": f"{signal}, {scale}{note}",
-                "folder": folder, "point": point}
-    return [reading("-s0.5", "D1", "σ_S² = 0.5", SENSITIVITY, d.point_of(SENSITIVITY, sigma_s2=0.5, algorithm=MB)),
-            reading("", "D1", "σ_S² = 1", GOSPA, 0, " (default)"),
-            reading("-s2", "D1", "σ_S² = 2", SENSITIVITY, d.point_of(SENSITIVITY, sigma_s2=2, algorithm=MB)),
-            reading("-d2", "D2", "σ_h² = 1.5", D2, 0)]
+    """Each run of the trackers: D1 at sigma_S^2 = 1 (the default, tbd-gospa.ini, no claim
+    suffix; and its first 100 runs, matched with D2, D3 and D1 with D3's footprint), D1 at
+    sigma_S^2 = 0.5 and 2, D2, D3. `joint`: the folder of the joint schedule's runs, if any."""
+    def reading(suffix, label, folder, point=0, joint=None, first=None, signal="D1"):
+        return {"suffix": suffix, "label": label, "folder": folder, "point": point, "joint": joint,
+                "first": first, "signal": signal}
+    return [reading("", "D1, σ_S² = 1 (default)", GOSPA, joint=JOINT),
+            reading("-s0.5", "D1, σ_S² = 0.5", SENSITIVITY, d.point_of(SENSITIVITY, sigma_s2=0.5, algorithm=MB)),
+            reading("-s2", "D1, σ_S² = 2", SENSITIVITY, d.point_of(SENSITIVITY, sigma_s2=2, algorithm=MB)),
+            reading("-d1-100", f"D1, runs 0–{MATCHED_RUNS - 1}", GOSPA, joint=JOINT, first=MATCHED_RUNS),
+            reading("-d1-wide", "D1, σ_h² = 0.58", D1_WIDE, joint=D1_WIDE),
+            reading("-d3", "D3", D3, joint=D3, signal="D3"),
+            reading("-d2", "D2", D2, joint=D2, signal="D2")]
 
 
-def tracker_table(d, folder, point=0):
-    """Per tracker: runs and the means over runs (± SE) of the run means from summary.csv."""
+# The default reading's trackers and the folders holding their runs (tbd-gospa.ini, and the
+# joint schedule's tbd-gospa-joint.ini on the same frames).
+DEFAULT_TRACKERS = ((MB, GOSPA), (IEMB, GOSPA), (BP1, GOSPA), (BP2, GOSPA), (BPJ[1], JOINT), (BPJ[2], JOINT))
+
+
+def tracker_table(d, entries, point=0):
+    """Per (tracker, folder): runs and the means over runs (± SE) of the run means from summary.csv."""
     rows = []
-    for spec in (MB, IEMB, BP1, BP2):
+    for spec, folder in entries:
         row = d.summary_row(folder, spec, point)
         cell = lambda c: markdown.pm(data.num(row, f"{c}_mean"), data.num(row, f"{c}_se"))  # noqa: E731
         rows.append([NAMES[spec], row["ok"], cell("gospa"), cell("gospa_p2"), cell("localisation"),
@@ -627,15 +543,24 @@ def tracker_table(d, folder, point=0):
                            "estimates per step", "runtime per step"], rows, "lrrrrrrrr")
 
 
-def pairs_table(d, folder, point=0):
-    """Per pair (A, B) of the four trackers: at how many k A's averaged GOSPA is lower (and beyond
+def pair_steps(d, a, folder_a, b, folder_b, point=0):
+    """The per-step paired differences GOSPA(b) - GOSPA(a), from whichever folder's digest holds the pair."""
+    for folder in dict.fromkeys((folder_b, folder_a)):
+        try:
+            return d.step_diffs(folder, b, a, point)
+        except data.DataError:
+            continue
+    return None
+
+
+def pairs_table(d, entries, point=0):
+    """Per pair (A, B) of the trackers: at how many k A's averaged GOSPA is lower (and beyond
     error either way), and the paired difference of the run means A - B."""
-    order = (MB, IEMB, BP1, BP2)
     rows = []
-    for i, a in enumerate(order):
-        for b in order[i + 1:]:
-            m, se, _ = paired_runs(d, folder, a, folder, b, point=point)
-            _, counts, _ = every_step(d.step_diffs(folder, b, a, point))
+    for i, (a, folder_a) in enumerate(entries):
+        for b, folder_b in entries[i + 1:]:
+            m, se, _ = paired_runs(d, folder_a, a, folder_b, b, point=point)
+            _, counts, _ = every_step(pair_steps(d, a, folder_a, b, folder_b, point))
             if counts:
                 lower = f"{counts['below']} of {counts['steps']}"
                 beyond = f"{counts['beyond']} / {counts['contradicted']}"
@@ -670,16 +595,19 @@ def p2_ordering_claim(d):
 
 
 def check_gospa(report, d):
-    report.value("gospa.trackers", tracker_table(d, GOSPA))
-    report.value("gospa.pairs", pairs_table(d, GOSPA))
-    meta = d.meta(GOSPA)
+    report.value("gospa.trackers", tracker_table(d, DEFAULT_TRACKERS))
+    report.value("gospa.pairs", pairs_table(d, DEFAULT_TRACKERS))
+    meta, joint = d.meta(GOSPA), d.meta(JOINT)
     report.value("gospa.runs", str(meta.get("trials_per_point", "?")))
     report.value("gospa.wall", markdown.duration(meta.get("wall_seconds", math.nan)))
+    report.value("gospa.joint_wall", markdown.duration(joint.get("wall_seconds", math.nan)))
     report.value("gospa.threads", str(meta.get("threads", "?")))
-    for c in reading_claims(d, next(r for r in readings(d) if not r["suffix"])):
+    default = next(r for r in readings(d) if not r["suffix"])
+    for c in reading_claims(d, default) + reading_claims(d, default, joint=True):
         report.claim(c)
     report.claim(p2_ordering_claim(d))
-    report.value("gospa.claims", report.claims_table(["G1", "G2", "G3", "G4", "O1"]))
+    report.value("gospa.claims", report.claims_table(
+        ["G1", "G2", "G3", "G4", "G1-joint", "G2-joint", "G3-joint", "G4-joint", "O1"]))
 
 
 # ============================================================================= the single run (Fig. 3)
@@ -724,6 +652,41 @@ def check_single_run(report, d):
         f"GOSPA, widened by a reading error of {FIG3_READING}; direction only when not, while G1 agrees"))
 
 
+# ============================================================================= TBD-MB's readings
+
+
+def check_mb_readings(report, d):
+    """TBD-MB with object-level exclusivity (the default) and without (association = none) against
+    the supplement's evidence on TBD-MB: Fig. 3's single run rising to about 9.9 (B1, B1-none: the
+    run-range rule of F3) and Fig. 1(d) (T1-mb, T1-mbnone of the toy), with the letter's G1 for
+    each."""
+    rows, ids = [], []
+    for spec, folder, suffix in ((MB, GOSPA, ""), (MB_NONE, MB_READINGS, "-none")):
+        peaks = d.runs(folder, spec, "gospa_max")
+        values = [] if peaks is None else [v for _, v in sorted(peaks.items())]
+        verdict, lo, hi = run_range_verdict(float(FIG3_PEAKS[MB]), values, FIG3_READING)
+        report.claim(Claim(
+            f"B1{suffix}", f"[{NAMES[spec]}] in a single run TBD-MB's GOSPA rises to about {FIG3_PEAKS[MB]}",
+            "supplement Fig. 3", FIG3_PEAKS[MB], f"2.5–97.5 percentiles of our runs' largest GOSPA: "
+            f"{markdown.fixed(lo, 2)}–{markdown.fixed(hi, 2)}", verdict,
+            f"the read-off largest GOSPA within the 2.5–97.5 percentiles of our runs' largest GOSPA, widened by "
+            f"a reading error of {FIG3_READING}"))
+        ids.append(f"B1{suffix}")
+        others = [paired_runs(d, folder, spec, GOSPA, o) for o in (IEMB, BP1)]
+        row = d.summary_row(folder, spec)
+        cell = lambda c: markdown.pm(data.num(row, f"{c}_mean"), data.num(row, f"{c}_se"))  # noqa: E731
+        toy = next((c for c in report.claims if c.id == ("T1-mb" if spec == MB else "T1-mbnone")), None)
+        rows.append([NAMES[spec], row["ok"], cell("gospa"), cell("false"), cell("missed"),
+                     f"{markdown.fixed(lo, 2)}–{markdown.fixed(hi, 2)}",
+                     ", ".join(f"{NAMES[o]} {pm_signed(m, se)}" for o, (m, se, _) in zip((IEMB, BP1), others)),
+                     f"**{toy.verdict}**" if toy else "not run"])
+    report.value("mb.table", markdown.table(
+        ["TBD-MB reading", "runs", "GOSPA p = 1", "false", "missed", "largest GOSPA over k: 2.5–97.5 % of runs",
+         "minus (paired)", "Fig. 1(d) under D1"], rows, "lrrrrrll"))
+    report.value("mb.claims", report.claims_table(ids))
+    report.value("mb.none_gospa", markdown.pm(*d.summary_mean(MB_READINGS, MB_NONE, "gospa")))
+
+
 # ============================================================================= extra estimates
 
 
@@ -751,31 +714,52 @@ def check_excess(report, d):
 # ============================================================================= sensitivity
 
 
-def check_sensitivity(report, d):
-    """The four statements (G1-G4) on each reading, with paired standard errors, and TBD-MB's
-    deficit against sigma_S^2 (S1)."""
-    rows, deficits = [], []
+def single_run_verdict(d, reading, joint, g1_verdict):
+    """F3 on one reading and schedule: each tracker's read-off largest GOSPA of the supplement's
+    single run within the 2.5-97.5 percentiles of our runs' largest GOSPA (widened by the
+    reading error); direction only when not, while G1 agrees (as check_single_run)."""
+    bp, bp_folder = (BPJ, reading["joint"]) if joint else (BP, reading["folder"])
+    parts = []
+    for spec, folder, paper in ((MB, reading["folder"], MB), (IEMB, reading["folder"], IEMB),
+                                (bp[1], bp_folder, BP1), (bp[2], bp_folder, BP2)):
+        peaks = d.runs(folder, spec, "gospa_max", reading["point"], reading.get("first"))
+        values = [] if peaks is None else [v for _, v in sorted(peaks.items())]
+        parts.append(run_range_verdict(float(FIG3_PEAKS[paper]), values, FIG3_READING)[0])
+    return verdicts.value_and_direction(verdicts.worst(parts), g1_verdict)
+
+
+def check_readings(report, d):
+    """The letter's statements (G1-G4, and F3's single-run levels) on each reading and schedule,
+    with paired standard errors, and TBD-MB's deficit against sigma_S^2 under D1 (S1)."""
+    rows, ids = [], []
+    by_id = {c.id: c for c in report.claims}
     for reading in readings(d):
-        folder, point = reading["folder"], reading["point"]
-        if reading["suffix"]:
-            claims = [report.claim(c) for c in reading_claims(d, reading)]
-        else:
-            claims = [c for c in report.claims if c.id in ("G1", "G2", "G3", "G4")]
-        means = [markdown.pm(*d.summary_mean(folder, s, "gospa", point)) for s in (MB, IEMB, BP1, BP2)]
-        rows.append([reading["label"], d.summary_row(folder, MB, point)["ok"]] + means
-                    + [f"**{c.verdict}**" for c in claims])
-        if reading["signal"] == "D1":
-            deficits.append((reading["scale"], *paired_runs(d, folder, MB, folder, BP1, point=point)[:2]))
-        for i, bp in ((2, BP1), (3, BP2)):
-            diffs = d.step_diffs(folder, IEMB, bp, point)
-            report.value(f"sens.unconfirmed.G{i}{reading['suffix']}",
-                         k_ranges(every_step(diffs)[2]) if diffs else "not run")
+        folder, point, first = reading["folder"], reading["point"], reading.get("first")
+        for joint in (False, True) if reading["joint"] else (False,):
+            suffix = reading["suffix"] + ("-joint" if joint else "")
+            claims = [by_id[f"G{i}{suffix}"] if f"G{i}{suffix}" in by_id else report.claim(c)
+                      for i, c in enumerate(reading_claims(d, reading, joint), start=1)]
+            ids += [c.id for c in claims if c.id not in ("G1", "G2", "G3", "G4", "G1-joint", "G2-joint", "G3-joint",
+                                                         "G4-joint")]
+            bp, bp_folder = (BPJ, reading["joint"]) if joint else (BP, folder)
+            means = [markdown.pm(*mean_over_runs(d, f, spec, point, first))
+                     for spec, f in ((MB, folder), (IEMB, folder), (bp[1], bp_folder), (bp[2], bp_folder))]
+            f3 = single_run_verdict(d, reading, joint, claims[0].verdict)
+            runs = first if first else d.summary_row(folder, MB, point)["ok"]
+            rows.append([reading["label"], "joint" if joint else "serial", runs] + means
+                        + [f"**{c.verdict}**" for c in claims] + [f"**{f3}**"])
+            for i, L in ((2, 1), (3, 2)):
+                diffs = d.step_diffs(bp_folder, IEMB, bp[L], point, first)
+                report.value(f"sens.unconfirmed.G{i}{suffix}", k_ranges(every_step(diffs)[2]) if diffs else "not run")
     report.value("sens.table", markdown.table(
-        ["reading", "runs", "TBD-MB", "TBD-IEMB", "TBD-BP L = 1", "TBD-BP L = 2",
+        ["reading", "TBD-BP schedule", "runs", "TBD-MB", "TBD-IEMB", "TBD-BP L = 1", "TBD-BP L = 2",
          "G1: TBD-MB worst", "G2: L = 1 below TBD-IEMB at every k", "G3: L = 2 below TBD-IEMB at every k",
-         "G4: L = 2 below L = 1"], rows, "lrrrrrllll"))
-    report.value("sens.claims", report.claims_table(
-        [f"G{i}{s}" for s in ("-s0.5", "-s2", "-d2") for i in range(1, 5)]))
+         "G4: L = 2 below L = 1", "F3: Fig. 3's single-run levels"], rows, "llrrrrrrlllll"))
+    report.value("sens.claims", report.claims_table(ids))
+    deficits = []
+    for scale, reading in (("σ_S² = 0.5", "-s0.5"), ("σ_S² = 1", ""), ("σ_S² = 2", "-s2")):
+        r = next(x for x in readings(d) if x["suffix"] == reading)
+        deficits.append((scale, *paired_runs(d, r["folder"], MB, r["folder"], BP1, point=r["point"])[:2]))
     parts = [verdicts.compare_direction(b[1] - a[1], math.hypot(a[2], b[2]), +1)
              for a, b in zip(deficits, deficits[1:])]
     words = report.value("sens.deficits", "; ".join(f"{pm_signed(m, se)} at {scale}" for scale, m, se in deficits))
@@ -784,6 +768,13 @@ def check_sensitivity(report, d):
         "TBD-MB minus TBD-BP L = 1: " + words, verdicts.worst(parts),
         "paired run-mean deficit at each σ_S²; each step up in σ_S² increases it beyond 2 combined SE "
         "(compare_direction; the runs differ, so the SEs add); the worst"))
+
+
+def mean_over_runs(d, folder, spec, point, first):
+    """(mean, se) of a tracker's run means: summary.csv, or runs.csv over the first runs."""
+    if first is None:
+        return d.summary_mean(folder, spec, "gospa", point)
+    return stats.mean_se(list((d.runs(folder, spec, "gospa", point, first) or {}).values()))[:2]
 
 
 # ============================================================================= particles and merging
@@ -1091,11 +1082,13 @@ def check_constants(report):
 def checks(report):
     d = TbdData(report.root)
     check_constants(report)
-    check_toy(report, d)
+    tbd_toy.check_toy(report, d, TOY)
+    tbd_calibration.check_calibration(report, d, CALIBRATION)
     check_gospa(report, d)
     check_single_run(report, d)
+    check_mb_readings(report, d)
     check_excess(report, d)
-    check_sensitivity(report, d)
+    check_readings(report, d)
     check_particles(report, d)
     check_merge(report, d)
     check_runtime(report, d)

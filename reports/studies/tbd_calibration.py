@@ -30,6 +30,7 @@ TOY_OBJECTS = ((4.0, 4.0), (5.0, 5.0))
 FIG2_ENERGY = (187.0, 127.0, 222.0)  # [F] excess energy of the isolated object, k = 14, 21, 27
 RHO_GRID = np.round(np.arange(0.0, 1.0 + 1e-9, 0.01), 2)
 SPREAD_GRID = np.round(np.arange(0.20, 2.0 + 1e-9, 0.01), 2)
+D2_SPREAD_GRID = np.round(np.arange(0.20, 6.0 + 1e-9, 0.01), 2)  # D2's optimum lies beyond 2 m^2
 D1_SPREAD, D2_SPREAD = 0.5, 1.5
 LR_95 = 1.92  # half the 95 % quantile of chi-square(1): a profile likelihood interval
 
@@ -104,11 +105,24 @@ def energy_log_likelihood(energy):
     return -0.5 * ((energy - mean) / se) ** 2
 
 
+def fig1_table(frame):
+    """fig1_log_likelihood over RHO_GRID x SPREAD_GRID at once (the same sums, broadcast)."""
+    readable = ~np.isnan(frame)
+    a = frame[readable]
+    g = np.stack([sum(_spreads(frame.shape, s))[readable] for s in SPREAD_GRID])  # [spread, cell]
+    rho = RHO_GRID[:, None, None]
+    nu = np.sqrt(rho * GAMMA) * g[None]
+    var = NOISE + (1.0 - rho) * GAMMA / 2.0 * g[None]
+    x = a * nu / var
+    log_i0 = np.where(x < 500.0, np.log(np.i0(np.minimum(x, 500.0))), x - 0.5 * np.log(2.0 * math.pi * np.maximum(x, 1.0)))
+    return np.sum(np.log(a / var) - (a * a + nu * nu) / (2.0 * var) + log_i0, axis=2)  # [rho, spread]
+
+
 def fit(root):
     """The D3 fit, its profile over rho, and the readings D1, D2 under the same evidence."""
     frame = read_frame(root)
-    table = np.array([[fig1_log_likelihood(frame, rho, s) + energy_log_likelihood(expected_energy(rho, s))
-                       for s in SPREAD_GRID] for rho in RHO_GRID])
+    energies = np.array([[expected_energy(rho, s) for s in SPREAD_GRID] for rho in RHO_GRID])
+    table = fig1_table(frame) + energy_log_likelihood(energies)
     i, j = np.unravel_index(np.argmax(table), table.shape)
     best = {"rho": float(RHO_GRID[i]), "spread": float(SPREAD_GRID[j]), "joint": float(table[i, j])}
     best["fig1"] = fig1_log_likelihood(frame, best["rho"], best["spread"])
@@ -127,7 +141,7 @@ def fit(root):
     d2 = {"spread": D2_SPREAD, "fig1": fig1_log_likelihood_d2(frame, D2_SPREAD), "energy": expected_energy_d2(D2_SPREAD)}
     d2["joint"] = d2["fig1"] + energy_log_likelihood(d2["energy"])
     d2_best = max(({"spread": float(s), "fig1": fig1_log_likelihood_d2(frame, s), "energy": expected_energy_d2(s)}
-                   for s in SPREAD_GRID), key=lambda r: r["fig1"] + energy_log_likelihood(r["energy"]))
+                   for s in D2_SPREAD_GRID), key=lambda r: r["fig1"] + energy_log_likelihood(r["energy"]))
     d2_best["joint"] = d2_best["fig1"] + energy_log_likelihood(d2_best["energy"])
     return {"best": best, "profile": profile, "d1": d1, "d2": d2, "d2_best": d2_best,
             "cells": int(np.sum(~np.isnan(frame))), "unread": int(np.sum(np.isnan(frame)))}
@@ -142,3 +156,106 @@ def scenario_constants(root):
         match = re.search(rf"constexpr double {name} = ([0-9.eE+-]+);", text)
         found[name] = float(match.group(1)) if match else None
     return found
+
+
+# ----------------------------------------------------------------------------- the REPORT's checks
+
+PANEL_E = (4.14, 4.13)  # supplement Fig. 1(e): where the kappa-tilde belief of PO 1 peaks [F]
+PANEL_READING_SE = 0.15  # m, as reports/studies/tbd_toy.py
+
+
+def belief_offsets(d, folder, po1="0"):
+    """{(rho, sigma_h^2): (dx, dy)} of the kappa-tilde belief mean of PO 1 from Fig. 1(e)'s peak,
+    per point of the calibration run (its digest), or None without the digest."""
+    rows = d.beliefs(folder)
+    if rows is None:
+        return None
+    where = {r["point"]: (float(r["mean_share"]), float(r["spread_variance"])) for r in d.summary(folder)}
+    return {where[r["point"]]: (float(r["mean_x"]) - PANEL_E[0], float(r["mean_y"]) - PANEL_E[1])
+            for r in rows if r["label"] == po1}
+
+
+def combined_profile(root, offsets):
+    """Per rho of the calibration grid: the (sigma_h^2, total, parts) maximising the log-likelihood
+    of Fig. 1(a)'s cells + Fig. 2's energy + Fig. 1(e)'s belief position (Gaussian, reading SE per
+    coordinate). Panel (f) moves with (e) (the same frame, the message alone differs) and adds no
+    independent evidence on the reading; (d) is TBD-MB's, whose own reading is open."""
+    frame = read_frame(root)
+    best = {}
+    for (rho, spread), (dx, dy) in offsets.items():
+        data_part = fig1_log_likelihood(frame, rho, spread) + energy_log_likelihood(expected_energy(rho, spread))
+        belief_part = -0.5 * ((dx / PANEL_READING_SE) ** 2 + (dy / PANEL_READING_SE) ** 2)
+        total = data_part + belief_part
+        if rho not in best or total > best[rho][1]:
+            best[rho] = (spread, total, data_part, belief_part, (dx, dy))
+    return dict(sorted(best.items()))
+
+
+def check_calibration(report, d, folder):
+    """The readings against Fig. 1(a), Fig. 2's energy and Fig. 1(e): the fit of D3, its profile
+    over rho, and claims C1 (D2 excluded), C2 (D3's constants are the fit), C3 (where the combined
+    evidence puts rho, and whether it admits D3)."""
+    from reports.core import markdown, verdicts  # noqa: E402 (kept local: the module's top is numerics)
+    from reports.core.study import Claim  # noqa: E402
+
+    f = fit(report.root)
+    best, d1, d2, d2_best = f["best"], f["d1"], f["d2"], f["d2_best"]
+    energy_mean, energy_se = energy_evidence()
+    report.value("cal.cells", str(f["cells"]))
+    report.value("cal.unread", str(f["unread"]))
+    report.value("cal.energy", markdown.pm(energy_mean, energy_se))
+    rows = []
+    for name, r, rho in (("D1", d1, "0"), ("D2", d2, "–"), ("D2, its best σ_h²", d2_best, "–"),
+                         ("D3 (the fit)", best, markdown.fixed(best["rho"], 2))):
+        rows.append([name, rho, markdown.fixed(r["spread"], 2), markdown.fixed(r["fig1"], 1),
+                     markdown.fixed(r["energy"], 0), markdown.fixed(r["joint"], 1),
+                     markdown.fixed(best["joint"] - r["joint"], 1)])
+    report.value("cal.readings", markdown.table(
+        ["reading", "ρ", "σ_h² (m²)", "log-likelihood of Fig. 1(a)'s cells", "expected excess energy",
+         "+ log-likelihood of Fig. 2's energy", "below the fit (nats)"], rows, "lrrrrrr"))
+    report.value("cal.interval", f"{markdown.fixed(best['interval'][0], 2)}–{markdown.fixed(best['interval'][1], 2)}")
+    report.value("cal.fit", f"ρ = {markdown.fixed(best['rho'], 2)}, σ_h² = {markdown.fixed(best['spread'], 2)} m²")
+
+    gap = best["joint"] - d2_best["joint"]
+    report.claim(Claim(
+        "C1", "Fig. 1(a) and Fig. 2's energy exclude D2 (a deterministic mean with a small covariance)", "ours", "–",
+        f"D2 at its best σ_h² lies {markdown.fixed(gap, 1)} nats below the D3 fit",
+        verdicts.compare_direction(gap - LR_95, 0.0, +1),
+        f"log-likelihood ratio of the D3 fit over D2 at its best σ_h² above {LR_95} nats (the 95 % "
+        f"quantile of χ²₁ halved)"))
+    constants = scenario_constants(report.root)
+    same = constants["kMeanShareD3"] == best["rho"] and constants["kSpreadD3"] == best["spread"]
+    report.claim(Claim(
+        "C2", "D3's defaults in scenarios/tbd/tbd.hpp are the fit to Fig. 1(a) and Fig. 2's energy", "ours",
+        f"ρ = {markdown.fixed(best['rho'], 2)}, σ_h² = {markdown.fixed(best['spread'], 2)}",
+        f"ρ = {constants['kMeanShareD3']}, σ_h² = {constants['kSpreadD3']}",
+        verdicts.AGREES if same else verdicts.DIFFERS, "the constants equal the grid's maximum"))
+
+    offsets = belief_offsets(d, folder)
+    if offsets is None:
+        report.value("cal.profile", "not run")
+        report.claim(Claim("C3", "the combined evidence", "ours", "–", "not run", verdicts.NOT_RUN, "–"))
+        report.value("cal.claims", report.claims_table(["C1", "C2", "C3"]))
+        return
+    profile = combined_profile(report.root, offsets)
+    top = max(v[1] for v in profile.values())
+    ml = max(profile, key=lambda rho: profile[rho][1])
+    admitted = [rho for rho, v in profile.items() if top - v[1] <= LR_95]
+    report.value("cal.profile", markdown.table(
+        ["ρ", "best σ_h² (m²)", "Fig. 1(a) + Fig. 2", "Fig. 1(e): κ̃ belief mean − peak (m)", "its log-likelihood",
+         "total below the maximum (nats)"],
+        [[markdown.fixed(rho, 1), markdown.fixed(v[0], 2), markdown.fixed(v[2], 1),
+          f"({markdown.signed(v[4][0], 2)}, {markdown.signed(v[4][1], 2)})", markdown.fixed(v[3], 1),
+          markdown.fixed(top - v[1], 2)] for rho, v in profile.items()], "rrrrrr"))
+    report.value("cal.combined_ml", markdown.fixed(ml, 1))
+    report.value("cal.combined_interval", f"{markdown.fixed(min(admitted), 1)}–{markdown.fixed(max(admitted), 1)}")
+    d3_admitted = min(admitted) <= best["rho"] <= max(admitted) + 0.05
+    report.claim(Claim(
+        "C3", "with Fig. 1(e)'s belief position added, the evidence is best fitted by D1 (ρ = 0) and still "
+        "admits D3's ρ", "ours", "–",
+        f"maximum at ρ = {markdown.fixed(ml, 1)}; 95 % profile interval ρ = "
+        f"{markdown.fixed(min(admitted), 1)}–{markdown.fixed(max(admitted), 1)}",
+        verdicts.AGREES if ml == 0.0 and d3_admitted else verdicts.DIFFERS,
+        f"profile log-likelihood over the calibration grid; the interval holds the ρ within {LR_95} nats of "
+        f"the maximum (D3's ρ counts as admitted within half a grid step)"))
+    report.value("cal.claims", report.claims_table(["C1", "C2", "C3"]))

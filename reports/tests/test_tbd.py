@@ -1,6 +1,7 @@
 """The TBD study's checks on a tampered copy of the committed data: one number changed in a digest
-or a summary changes the verdict it feeds. Each test copies results/tbd/ and experiments/ into a
-temporary root, edits one file there, and runs the study's checks on that root."""
+or a summary changes the verdict it feeds. Each test copies results/tbd/, experiments/ and
+scenarios/tbd/tbd.hpp into a temporary root, edits one file there, and runs the study's checks on
+that root."""
 
 import csv
 import json
@@ -11,7 +12,7 @@ import unittest
 
 from reports import render
 from reports.core import study as study_core, verdicts
-from reports.studies import tbd
+from reports.studies import tbd, tbd_toy
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 HAS_DIGESTS = all(os.path.exists(os.path.join(REPO, f, "runs.csv")) for f, _ in tbd.DIGESTS) and \
@@ -43,6 +44,8 @@ class Copy(unittest.TestCase):
         shutil.copytree(os.path.join(REPO, "results", "tbd"), os.path.join(self.root, "results", "tbd"),
                         ignore=shutil.ignore_patterns(*LARGE))
         shutil.copytree(os.path.join(REPO, "experiments"), os.path.join(self.root, "experiments"))
+        os.makedirs(os.path.join(self.root, "scenarios", "tbd"))  # D3's constants (the calibration checks them)
+        shutil.copy(os.path.join(REPO, "scenarios", "tbd", "tbd.hpp"), os.path.join(self.root, "scenarios", "tbd"))
 
     def tearDown(self):
         shutil.rmtree(self.root)
@@ -62,11 +65,11 @@ class TamperedDigests(Copy):
     def test_toy_peak_follows_the_belief_mean(self):
         """T3: the exact-κ belief moved onto the supplement's Fig. 1(f) peak agrees within error;
         moved 1 m away from it, it differs."""
-        peak = tbd.FIG1_PEAKS["f"]
+        peak = tbd_toy.FIG1_PEAKS["f"]
 
         def move(offset):
-            def change(row):
-                if row["algorithm"] == tbd.TOY_EXACT and row["label"] == tbd.PO1:
+            def change(row):  # point 0: reading D1, the default
+                if row["algorithm"] == tbd_toy.EXACT and row["label"] == tbd_toy.PO1 and row["point"] == "0":
                     row["mean_x"], row["mean_y"] = str(float(peak[0]) + offset), str(float(peak[1]) + offset)
             edit_csv(self.file(tbd.TOY, "beliefs-summary.csv"), change)
 
