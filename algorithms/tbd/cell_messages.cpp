@@ -458,18 +458,18 @@ bool CellMessages::exact_log_ratios(const std::vector<ParticleObject*>& objects)
       }
     }
   }
-  // The other PO's β_{n',j} weights (normalised, absent last), from its current λ.
-  std::vector<double> other_weight, other_mean, other_variance;
+  // The other PO's β_{n',j} log weights (normalised, absent last), from its current λ.
+  std::vector<double> log_other_weight, other_mean, other_variance, terms;
   const auto extrinsic = [&](int m, int c) {
     const ParticleObject& other = *objects[m];
     const Work& work = work_[m];
     const int p = other.size();
-    other_weight.resize(p + 1);
+    log_other_weight.resize(p + 1);
     const double* own = &work.own_factor[static_cast<std::size_t>(c) * p];
-    for (int i = 0; i < p; ++i) other_weight[i] = std::log(other.weight[i] * other.existence * own[i]) + work.total[i];
-    other_weight[p] = std::log1p(-other.existence);
-    const double log_norm = log_sum_exp(other_weight, p + 1, kMinusInfinity);
-    for (double& v : other_weight) v = std::exp(v - log_norm);
+    for (int i = 0; i < p; ++i) log_other_weight[i] = std::log(other.weight[i] * other.existence * own[i]) + work.total[i];
+    log_other_weight[p] = std::log1p(-other.existence);
+    const double log_norm = log_sum_exp(log_other_weight, p + 1, kMinusInfinity);
+    for (double& v : log_other_weight) v -= log_norm;
   };
   std::vector<std::vector<double>> next(count);
   for (int n = 0; n < count; ++n) next[n].assign(work_[n].own_factor.size(), 0.0);
@@ -497,23 +497,24 @@ bool CellMessages::exact_log_ratios(const std::vector<ParticleObject*>& objects)
           other_variance[i] = (variance_per_spread_ + variance_per_spread2_ * g) * g;
         }
       }
-      // κ(0) and κ(x, 1) as sums over the other PO's states (letter eq (5)).
-      const auto kappa = [&](double m, double variance) {
-        double sum = (o != nullptr ? other_weight[q] : 1.0) *
-                     std::exp(log_isotropic_normal(zx - m, zy, noise + variance));
+      // log κ(0) and log κ(x, 1) as log-sums over the other PO's states (letter eq (5)); in the
+      // log domain, since a bright cell's Gaussians underflow at small variances.
+      terms.resize(q + 1);
+      const auto log_kappa = [&](double m, double variance) {
+        terms[q] = (o != nullptr ? log_other_weight[q] : 0.0) + log_isotropic_normal(zx - m, zy, noise + variance);
         for (int i = 0; i < q; ++i) {
-          sum += other_weight[i] *
-                 std::exp(log_isotropic_normal(zx - m - other_mean[i], zy, noise + variance + other_variance[i]));
+          terms[i] = log_other_weight[i] +
+                     log_isotropic_normal(zx - m - other_mean[i], zy, noise + variance + other_variance[i]);
         }
-        return sum;
+        return log_sum_exp(terms, q, terms[q]);
       };
-      const double absent = std::log(kappa(0.0, 0.0));
+      const double absent = log_kappa(0.0, 0.0);
       const double* gx = &work.spread_x[static_cast<std::size_t>(c % w.columns()) * p];
       const double* gy = &work.spread_y[static_cast<std::size_t>(c / w.columns()) * p];
       double* lambda = &next[n][static_cast<std::size_t>(c) * p];  // λ here, exp(−λ) below
       for (int i = 0; i < p; ++i) {
         const double g = gx[i] * gy[i];
-        lambda[i] = std::log(kappa(mean_per_spread_ * g, (variance_per_spread_ + variance_per_spread2_ * g) * g)) - absent;
+        lambda[i] = log_kappa(mean_per_spread_ * g, (variance_per_spread_ + variance_per_spread2_ * g) * g) - absent;
       }
     }
   }

@@ -14,7 +14,8 @@
 //     others' κ̃^(ℓ−1)). Flooding oscillates with period 2 wherever two POs can explain the
 //     same energy — each sees the other's claim and gives the object up, then both reclaim it
 //     — so a duplicate pair is never resolved at even L (and at odd L both are dropped); the
-//     serial schedule lets the older PO keep the object and the duplicate see it explained.
+//     serial schedule lets one PO keep the object and the other see it explained
+//     (tests/tbd/test_cell_message_schedules.cpp, two POs on one object, L = 1..4).
 //  3. New POs: one per data cell j (the letter's "new object hypothesis for each data cell"),
 //     α(x,1) ∝ (μ_B/J) f_B,j(x), α(x,0) ∝ 1, so r⁻ = (μ_B/J)/(1 + μ_B/J); f_B,j is uniform
 //     over cell j's square with velocity ~ N(0, σ_v² I₂). Since μ_j(x), C_j(x) depend on the
@@ -25,10 +26,12 @@
 //     the new POs already kept (their beliefs added to the cells' totals), and kept if still
 //     above. Why not flooding, as for the legacy POs: an object's energy covers about 3 × 3
 //     cells, so at ℓ = 1 every new PO around it claims it, and at ℓ = 2 each sees the others'
-//     claims and all give it up — the flooding schedule oscillates with period 2 (measured:
-//     best new-PO log-odds +24 at L = 1, −11 at L = 2, +24 at L = 3; tests/tbd/test_tbd_bp.cpp),
-//     so at even L no object would ever be born. The serial schedule lets the strongest new PO
-//     take the object and the neighbours see it explained.
+//     claims and all give it up — the flooding schedule oscillates with period 2
+//     (tests/tbd/test_cell_message_schedules.cpp, one object on a 12 × 12 D1 grid: 21–26 new POs
+//     with r̃ > 0.5 at L = 1, none at L = 2 (best log-odds about −10), as many again at L = 3),
+//     so at odd L every object would be duplicated and at even L none would ever be born. The
+//     serial schedule lets the strongest new PO take the object and the neighbours see it
+//     explained.
 //  4. Beliefs f̃(x^(i),1) ∝ w^(i) Π_j κ̃^(L)_{n,j}(x^(i),1), existence r̃ (log-odds form).
 //     Legacy POs with r̃ < pruning_threshold are deleted, the others resampled to P particles
 //     (systematic). A kept new PO becomes a legacy PO: P particles drawn from its α (uniform in

@@ -797,6 +797,34 @@ TEST_CASE("tbd cell messages: exact kappa on a tree (one shared cell) gives the 
   }
 }
 
+TEST_CASE("tbd cell messages: exact kappa is computed in the log domain: a bright shared cell at small noise",
+          "[tbd][cell_messages][exact]") {
+  // The tree of the test above with σ² = 0.05 and the shared cell (2, 2) at z = (60, 0): every
+  // Gaussian of eq (5) in that cell is below e^{−3000}, so a sum of densities underflows to 0 and
+  // λ = log 0 − log 0; the log-domain sums still give the brute-force marginals at L = 2.
+  for (const TbdSignal signal : {TbdSignal::fluctuating, TbdSignal::deterministic}) {
+    INFO(signal_name(signal));
+    Pair p = make_two(signal, 1.5, 3.5, 0);
+    p.model.sensor.noise_variance = 0.05;
+    p.frame.col(2 * p.model.sensor.columns + 2) = Eigen::Vector2d(60.0, 0.0);
+    const std::vector<CellWindow> windows{CellWindow{0, 3, 0, 3}, CellWindow{2, 5, 2, 5}};
+    const std::vector<Marginal> exact = brute_force(p.model, p.objects, windows, p.frame);
+    CellMessages messages;
+    CellMessageOptions options;
+    options.iterations = 2;
+    options.support_radius = p.radius;
+    options.exact = true;
+    REQUIRE(messages.run(p.model.sensor, p.model.gamma, p.frame, pointers(p.objects), options));
+    for (int n = 0; n < 2; ++n) {
+      INFO("PO " << n << ": exact existence " << exact[n].existence);
+      REQUIRE(std::isfinite(messages.existence_log_odds(n)));
+      const Marginal bp = belief(messages, p.objects[n], n);
+      CHECK(bp.existence == close(exact[n].existence, 1e-9, 1e-12));
+      for (std::size_t i = 0; i < bp.weights.size(); ++i) CHECK(bp.weights[i] == close(exact[n].weights[i], 1e-9, 1e-12));
+    }
+  }
+}
+
 TEST_CASE("tbd cell messages: exact kappa on a loopy pair runs but is not the brute-force marginal",
           "[tbd][cell_messages][exact]") {
   for (const TbdSignal signal : {TbdSignal::fluctuating, TbdSignal::deterministic}) {
