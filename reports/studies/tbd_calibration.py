@@ -51,13 +51,18 @@ def _spreads(shape, spread):
     return [np.exp(-((x + 0.5 - px) ** 2 + (y + 0.5 - py) ** 2) / (2.0 * spread)) for px, py in TOY_OBJECTS]
 
 
+I0_SWITCH = 700.0  # below, numpy's i0 (e^700 is still a double); above, its asymptotic series
+
+
 def _log_i0(x):
+    """log I0(x) for x >= 0: numpy's i0 below I0_SWITCH, above it x - log(2 pi x)/2 plus the log of
+    the series 1 + 1/(8x) + 9/(128 x^2) (its next term, 225/(3072 x^3), is below 1e-9 there)."""
     x = np.asarray(x, dtype=float)
-    small = x < 500.0
+    small = x < I0_SWITCH
     out = np.empty_like(x)
     out[small] = np.log(np.i0(x[small]))
     big = x[~small]
-    out[~small] = big - 0.5 * np.log(2.0 * math.pi * big)
+    out[~small] = big - 0.5 * np.log(2.0 * math.pi * big) + np.log1p(1.0 / (8.0 * big) + 9.0 / (128.0 * big * big))
     return out
 
 
@@ -84,13 +89,15 @@ def fig1_log_likelihood_d2(frame, spread):
 
 
 def expected_energy(rho, spread):
-    """sum_j (|mu_j|^2 + 2 c_j) of a cell-centred D3 object at sigma_S^2 = 1 (lattice sums of g and
-    g^2 by the integrals 2 pi sigma_h^2 and pi sigma_h^2: relative error below 1e-3 here)."""
+    """E sum_j (|mu_j|^2 + 2 c_j) of a D3 object at sigma_S^2 = 1, its position uniform within a cell
+    (as Fig. 2's objects are, at no particular place): the lattice sums of g and g^2 averaged over
+    the position are exactly the integrals 2 pi sigma_h^2 and pi sigma_h^2 (Delta = 1)."""
     return rho * GAMMA * math.pi * spread + (1.0 - rho) * GAMMA * 2.0 * math.pi * spread
 
 
 def expected_energy_d2(spread):
-    # |mu|^2 = (gamma / (2 pi sigma_h^2))^2 g^2 summed: gamma^2 / (4 pi sigma_h^2); 2 c = 2 g^2: 2 pi sigma_h^2.
+    """The same for D2: |mu|^2 = (gamma / (2 pi sigma_h^2))^2 g^2 sums to gamma^2 / (4 pi sigma_h^2),
+    2 c = 2 g^2 to 2 pi sigma_h^2."""
     return GAMMA ** 2 / (4.0 * math.pi * spread) + 2.0 * math.pi * spread
 
 
@@ -113,8 +120,7 @@ def fig1_table(frame):
     rho = RHO_GRID[:, None, None]
     nu = np.sqrt(rho * GAMMA) * g[None]
     var = NOISE + (1.0 - rho) * GAMMA / 2.0 * g[None]
-    x = a * nu / var
-    log_i0 = np.where(x < 500.0, np.log(np.i0(np.minimum(x, 500.0))), x - 0.5 * np.log(2.0 * math.pi * np.maximum(x, 1.0)))
+    log_i0 = _log_i0(a * nu / var)
     return np.sum(np.log(a / var) - (a * a + nu * nu) / (2.0 * var) + log_i0, axis=2)  # [rho, spread]
 
 
