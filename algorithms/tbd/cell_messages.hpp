@@ -32,7 +32,9 @@
 // the field they see — per cell the totals of the run's POs' next messages β^(L+1)_{n,j} —
 // and evaluate() runs one new PO against the field (its own term is not in it), with κ̃;
 // add_to_field() then adds an accepted new PO's belief, so the next new PO sees it (a serial
-// schedule over the new POs; see tbd_bp.hpp for why).
+// schedule over the new POs; see tbd_bp.hpp for why). TbdBp's joint schedule instead runs the
+// serial schedule in its parts (start_serial, serial_sweep, finish_serial) and puts the kept
+// new POs' extrinsic messages into the field between the sweeps (enter_field, leave_field).
 #include <cmath>
 #include <cstdint>
 #include <vector>
