@@ -86,6 +86,7 @@ std::string BearingsOptions::validate() const {
   if (!(init_noise_deg > 0.0 && init_noise_deg <= 90.0)) return fmt::format("init_noise_deg = {} must be in (0, 90]", init_noise_deg);
   if (scans_per_sensor < 1 || scans_per_sensor > 1000) return fmt::format("scans_per_sensor = {} must be in 1..1000", scans_per_sensor);
   if (!(probe_weight > 0.0 && probe_weight <= 1e-3)) return fmt::format("probe_weight = {} must be in (0, 1e-3]", probe_weight);
+  if (init_corner < 0 || init_corner > 3) return fmt::format("init_corner = {} must be in 0..3", init_corner);
   return {};
 }
 
@@ -102,6 +103,10 @@ double BearingsScenario::ray_length(double relative_bearing) {
 }
 
 BearingsScenario::BearingsScenario(const Options& options) : options_(options) {}
+
+int BearingsScenario::scan_sensor(int scan) const {
+  return options_.scan_order == kRoundRobin ? scan % 4 : scan / options_.scans_per_sensor;
+}
 
 void BearingsScenario::generate(RandomStream& rng, MultiScanSample& sample) const { generate(rng, sample, nullptr); }
 
@@ -132,7 +137,8 @@ void BearingsScenario::generate(RandomStream& rng, MultiScanSample& sample, Bear
     const double x = rng.uniform(-kHalfWidth, kHalfWidth);
     const double y = rng.uniform(-kHalfWidth, kHalfWidth);
     target.truth = {x, y};
-    target.init_sensor = std::min(static_cast<int>(rng.uniform() * 4.0), 3);
+    const int drawn = std::min(static_cast<int>(rng.uniform() * 4.0), 3);
+    target.init_sensor = o.init_sensor == kInitRandom ? drawn : o.init_corner;
     target.init_bearing = relative_bearing(target.truth, target.init_sensor) + init_sd * rng.normal();
     const TruncatedNormal proposal(target.init_bearing, init_sd, 0.0, kWedge);
     const Eigen::Vector2d corner = sensor_position(target.init_sensor);
@@ -161,7 +167,7 @@ void BearingsScenario::generate(RandomStream& rng, MultiScanSample& sample, Bear
     scale[particles] = particles * target.proposal_density[particles] / o.probe_weight;
   }
 
-  // 3. Scans, round robin over the sensors.
+  // 3. Scans, in the order of scan_order.
   const int scan_count = 4 * o.scans_per_sensor;
   const double sd = o.noise_deg * kDegree;
   bearings.resize(scan_count);
@@ -169,7 +175,7 @@ void BearingsScenario::generate(RandomStream& rng, MultiScanSample& sample, Bear
   if (details != nullptr) details->scan_sensor.resize(scan_count);
   sample.detections = sample.false_alarms = 0;
   for (int t = 0; t < scan_count; ++t) {
-    const int sensor = t % 4;
+    const int sensor = scan_sensor(t);
     if (details != nullptr) details->scan_sensor[t] = sensor;
     std::vector<double>& z = bearings[t];
     std::vector<int>& from = origin[t];
@@ -209,7 +215,7 @@ void BearingsScenario::generate(RandomStream& rng, MultiScanSample& sample, Bear
     const int m = static_cast<int>(z.size());
     scan.measurements = m;
     scan.factor.resize(n);
-    const Eigen::Vector2d corner = sensor_position(t % 4);
+    const Eigen::Vector2d corner = sensor_position(scan_sensor(t));
     for (int i = 0; i < n; ++i) {
       const Eigen::MatrixX2d& positions = targets[i].particles;
       for (int h = 0; h < hypotheses; ++h) {

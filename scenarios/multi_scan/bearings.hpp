@@ -11,11 +11,18 @@
 //    target is a problem with no tracks (the runner records it as skipped:no_targets).
 //  - Targets are uniform on the region and static: the paper "refines locations" with every
 //    scan and describes no motion model, so positions do not change between scans.
-//  - Track initialisation: one sensor, uniformly at random among the four, measures the
-//    target's bearing with N(0, init_noise_deg²) noise; the track's particles represent the
-//    posterior π0(x) ∝ 1{x in region}·N(φ(x); φ_m, σ0²) (uniform prior × that bearing).
-//  - Scans: scans_per_sensor rounds of the four sensors in round-robin order
-//    (scan t uses sensor t mod 4), so 4 or 12 scans. In each scan every target is detected with
+//  - Track initialisation: one sensor measures the target's bearing with N(0, init_noise_deg²)
+//    noise; the track's particles represent the posterior π0(x) ∝ 1{x in region}·N(φ(x); φ_m,
+//    σ0²) (uniform prior × that bearing). Which sensor is a reading [R] (`init_sensor`): the
+//    paper initialises tracks "from one sensor … from a single location"; `random` (default)
+//    draws a corner uniformly per target, `corner` takes init_corner for every target (the
+//    uniform is drawn either way, so the two readings share the draws up to the first target
+//    whose corner differs; its particles then take other numbers). That sensor also scans, as
+//    one of the four.
+//  - Scans: scans_per_sensor scans of each of the four sensors, so 4 or 12 scans, in the order
+//    `scan_order` [R]: `round_robin` (default; scan t uses sensor t mod 4) or `grouped` (scan t
+//    uses sensor t / scans_per_sensor: all of sensor 0's scans, then sensor 1's, ...). The
+//    paper does not give the order; with one scan per sensor the two coincide. In each scan every target is detected with
 //    probability pd, with bearing noise N(0, noise_deg²); false alarms are Poisson(clutter_mean)
 //    uniform over the sensor's 90° wedge; the measurements of a scan are shuffled.
 //  - Factors, eq (33) with constant Pd:  ψ_t(p, 0) = 1 − pd,
@@ -49,7 +56,8 @@
 //
 // Draw order (stable; a change alters every trial's numbers):
 //  1. the number of targets: poisson(mean_targets) (nothing if poisson_targets = 0);
-//  2. per target: uniform x, uniform y, uniform (initialising sensor), normal (its bearing
+//  2. per target: uniform x, uniform y, uniform (initialising sensor; drawn also when
+//     init_sensor = corner), normal (its bearing
 //     noise), then per particle: the truncated normal's uniforms/normals, one uniform (range);
 //  3. per scan: per target bernoulli(pd) and, if detected, one normal; poisson(clutter_mean),
 //     one uniform per false alarm; Fisher–Yates shuffle (for k = M−1..1 one uniform).
@@ -72,6 +80,9 @@ struct BearingsOptions {
   double noise_deg = 1.0;       // bearing noise s.d. of the scans, degrees (paper: 1)
   double init_noise_deg = 0.1;  // s.d. of the initialising bearing, degrees (paper: 0.1)
   int scans_per_sensor = 1;     // rounds of the four sensors: 1 → 4 scans, 3 → 12 (paper: 1, 3)
+  int init_sensor = 0;          // random: each target from a corner drawn uniformly; corner: all from init_corner [R]
+  int init_corner = 0;          // init_sensor = corner: its index, 0..3 (counter-clockwise from (−100, −100))
+  int scan_order = 0;           // round_robin: scan t uses sensor t mod 4; grouped: each sensor's scans together [R]
   double probe_weight = 1e-6;   // ε: truth probe's prior relative to a particle at its place
 
   void bind(ParamList& p) {
@@ -84,6 +95,11 @@ struct BearingsOptions {
     p.add("init_noise_deg", init_noise_deg, "s.d. of the initialising bearing, degrees, > 0");
     p.add("scans_per_sensor", scans_per_sensor, "scans of each of the 4 sensors (round robin), >= 1");
     p.add("probe_weight", probe_weight, "truth probe prior relative to a particle there, in (0, 1e-3]");
+    p.add_choice("init_sensor", init_sensor, {"random", "corner"},
+                 "which sensor initialises a track: a uniformly drawn corner per target, or init_corner for all");
+    p.add("init_corner", init_corner, "init_sensor = corner: the corner, 0..3 counter-clockwise from (-100, -100)");
+    p.add_choice("scan_order", scan_order, {"round_robin", "grouped"},
+                 "round_robin: scan t uses sensor t mod 4; grouped: scans_per_sensor scans of sensor 0, then 1, ...");
   }
   std::string validate() const;  // "" if valid, else which field breaks which rule
 };
@@ -114,6 +130,9 @@ class BearingsScenario final : public MultiScanScenario {
   static Eigen::Vector2d sensor_position(int sensor);
   static double wedge_start(int sensor);       // θ_k, rad
   static double ray_length(double relative_bearing);  // L(φ)
+  static constexpr int kInitRandom = 0, kInitCorner = 1;  // BearingsOptions::init_sensor
+  static constexpr int kRoundRobin = 0, kGrouped = 1;     // BearingsOptions::scan_order
+  int scan_sensor(int scan) const;                        // the sensor of scan t (scan_order)
 
   explicit BearingsScenario(const Options& options);
   void generate(RandomStream& rng, MultiScanSample& sample) const override;

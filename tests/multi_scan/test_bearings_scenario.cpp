@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "harness/core/params.hpp"
@@ -179,4 +180,63 @@ TEST_CASE("bearings: invalid parameters are refused with the field named", "[bea
   CHECK(BearingsOptions{.pd = 1.0}.validate().find("pd") != std::string::npos);
   CHECK(BearingsOptions{.clutter_mean = 0.0}.validate().find("clutter_mean") != std::string::npos);
   CHECK(BearingsOptions{.scans_per_sensor = 0}.validate().find("scans_per_sensor") != std::string::npos);
+}
+
+TEST_CASE("bearings: init_sensor = corner initialises every track from init_corner",
+          "[bearings]") {
+  const BearingsScenario random(options_from({{"particles", "40"}, {"scans_per_sensor", "3"}}));
+  for (const int corner : {0, 2, 3}) {
+    INFO("init_corner " << corner);
+    const BearingsScenario fixed(options_from({{"particles", "40"}, {"scans_per_sensor", "3"}, {"init_sensor", "corner"},
+                                               {"init_corner", std::to_string(corner)}}));
+    for (std::uint32_t trial = 0; trial < 5; ++trial) {
+      MultiScanSample a, b;
+      BearingsDetails da, db;
+      RandomStream ra(kSeed, 8, trial), rb(kSeed, 8, trial);
+      random.generate(ra, a, &da);
+      fixed.generate(rb, b, &db);
+      REQUIRE(da.targets.size() == db.targets.size());
+      // The same stream up to the first target whose corner differs (its particles then take
+      // other numbers): the targets before it are the same, and its own position.
+      bool same_stream = true;
+      for (std::size_t i = 0; i < db.targets.size(); ++i) {
+        const auto& t = db.targets[i];
+        CHECK(t.init_sensor == corner);
+        if (same_stream) CHECK(t.truth == da.targets[i].truth);
+        same_stream = same_stream && da.targets[i].init_sensor == corner;
+        // The particles lie on the bearing from that corner: within 6 init s.d. of its measured bearing.
+        const Eigen::Vector2d c = BearingsScenario::sensor_position(corner);
+        for (int p = 0; p < 40; ++p) {
+          const Eigen::Vector2d d = t.particles.row(p).transpose() - c;
+          const double phi = wrapped(std::atan2(d.y(), d.x()) - BearingsScenario::wedge_start(corner));
+          CHECK(std::abs(phi - t.init_bearing) < 6.0 * 0.1 * kPi / 180.0);
+        }
+      }
+      CHECK(da.scan_sensor == db.scan_sensor);
+    }
+  }
+  CHECK(BearingsOptions{.init_corner = 4}.validate().find("init_corner") != std::string::npos);
+}
+
+TEST_CASE("bearings: scan_order = grouped takes each sensor's scans together", "[bearings]") {
+  for (const int rounds : {1, 3}) {
+    INFO("scans per sensor " << rounds);
+    const auto order = [&](const char* scan_order) {
+      const BearingsScenario scenario(options_from({{"particles", "20"}, {"scans_per_sensor", std::to_string(rounds)},
+                                                    {"scan_order", scan_order}}));
+      MultiScanSample sample;
+      BearingsDetails details;
+      RandomStream rng(kSeed, 9, 0);
+      scenario.generate(rng, sample, &details);
+      REQUIRE(static_cast<int>(details.scan_sensor.size()) == 4 * rounds);
+      for (int t = 0; t < 4 * rounds; ++t) CHECK(details.scan_sensor[t] == scenario.scan_sensor(t));
+      return details.scan_sensor;
+    };
+    const std::vector<int> round_robin = order("round_robin"), grouped = order("grouped");
+    for (int t = 0; t < 4 * rounds; ++t) {
+      CHECK(round_robin[t] == t % 4);
+      CHECK(grouped[t] == t / rounds);
+    }
+    if (rounds == 1) CHECK(round_robin == grouped);
+  }
 }
