@@ -15,17 +15,24 @@
 // with q̃ the belief renormalised over the particles (probe excluded). Both are consistent as
 // N → ∞; the comparisons inside HPD are between exact values of π0·f (the estimate of ∫π0 f
 // cancels), so HPD's only error is the Monte Carlo error of the weighted sum.
+//   HPD ranked by likelihood [R]: the paper ranks by the density (eq 92); ranking by the
+//   method's likelihood of the scans, f(x_p) = q(p)/ψ(p), instead, HPD_f = Σ_p q̃(p)·[f(x_p) ≥
+//   f(x*)] with f(x*) = q(probe)/ψ(probe), is the same construction with another statistic: for
+//   a truth drawn from the belief it is Uniform(0, 1) too (P(T(X) ≥ T(X*)) for X, X* i.i.d.),
+//   so both are calibration checks; they weigh the prior's shape differently.
 #include "harness/core/matrix_types.hpp"
 
 namespace dabench {
 
 struct ParticleBeliefMetrics {
-  double hpd = 0.0;      // eq (92), in [0, 1]
-  double entropy = 0.0;  // differential entropy estimate, nats
+  double hpd = 0.0;             // eq (92), in [0, 1]
+  double entropy = 0.0;         // differential entropy estimate, nats
+  double hpd_likelihood = 0.0;  // HPD ranked by the likelihood q/ψ, in [0, 1]
 };
 
-// `belief` q over hypotheses (probe included), `density_scale` s with p̂ = q·s, `probe` the
-// index of the truth probe. NaN values if the particles carry no belief.
-ParticleBeliefMetrics particle_belief_metrics(const Vector& belief, const Vector& density_scale, int probe);
+// `belief` q over hypotheses (probe included), `density_scale` s with p̂ = q·s, `prior` ψ,
+// `probe` the index of the truth probe. NaN values if the particles carry no belief.
+ParticleBeliefMetrics particle_belief_metrics(const Vector& belief, const Vector& density_scale, const Vector& prior,
+                                              int probe);
 
 }  // namespace dabench

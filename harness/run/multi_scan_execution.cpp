@@ -87,9 +87,9 @@ void MultiScanExecution::run_item(MultiScanWorker& worker, long long item) const
     const bool ok = report.skipped.empty();
     double hpd_sum = 0.0, hpd_max = nan, entropy_sum = 0.0;
     for (int i = 0; i < n; ++i) {
-      ParticleBeliefMetrics metrics{nan, nan};
+      ParticleBeliefMetrics metrics{nan, nan, nan};
       if (ok) {
-        metrics = particle_belief_metrics(worker.beliefs[a].track[i], worker.sample.density_scale[i],
+        metrics = particle_belief_metrics(worker.beliefs[a].track[i], worker.sample.density_scale[i], problem.prior[i],
                                           worker.sample.truth_probe[i]);
         hpd_sum += metrics.hpd;
         hpd_max = i == 0 ? metrics.hpd : std::max(hpd_max, metrics.hpd);
@@ -99,6 +99,7 @@ void MultiScanExecution::run_item(MultiScanWorker& worker, long long item) const
                      spec_field_[a], i + 1);
       append_number(targets, metrics.hpd);
       append_number(targets, metrics.entropy);
+      append_number(targets, metrics.hpd_likelihood);
       targets += '\n';
     }
     fmt::format_to(std::back_inserter(trials), "{},{},{},{},", point_prefix_[point], trial, plan_.seed, spec_field_[a]);

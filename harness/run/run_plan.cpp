@@ -86,7 +86,7 @@ std::string RunPlan::trials_header() const {
 std::vector<ItemFile> RunPlan::item_files() const {
   const std::string point = point_columns(point_params.front());
   switch (kind) {
-    case RunKind::multi_scan: return {{"targets.csv", point + ",trial,seed,algorithm,target,hpd,entropy\n"}};
+    case RunKind::multi_scan: return {{"targets.csv", point + ",trial,seed,algorithm,target,hpd,entropy,hpd_likelihood\n"}};
     case RunKind::tracking: {
       std::vector<ItemFile> files = {
           {"tracks.csv", point + ",trial,algorithm,track,confirmed,scan,g,g_dot,theta,theta_dot,"

@@ -69,13 +69,16 @@ TEST_CASE("run multi-scan: trials.csv and targets.csv rows and metrics agree", "
     CHECK(trials.find_column(column).has_value());
   }
   REQUIRE(trials.rows.size() == static_cast<std::size_t>(kPoints * kTrials * kSpecs));
-  CHECK(targets.header.back() == "entropy");
+  CHECK(targets.header.back() == "hpd_likelihood");
   // targets.csv: per (point, trial, algorithm) n_targets rows, whose mean/max match trials.csv.
   std::map<std::string, std::vector<std::pair<double, double>>> by_key;
   for (std::size_t r = 0; r < targets.rows.size(); ++r) {
     const std::string key = targets.at(r, "point") + "/" + targets.at(r, "trial") + "/" + targets.at(r, "algorithm");
     by_key[key].push_back({to_double(targets.at(r, "hpd")), to_double(targets.at(r, "entropy"))});
     CHECK(std::stoi(targets.at(r, "target")) == static_cast<int>(by_key[key].size()));
+    const double by_likelihood = to_double(targets.at(r, "hpd_likelihood"));
+    CHECK(by_likelihood >= 0.0);
+    CHECK(by_likelihood <= 1.0);
   }
   std::size_t target_rows = 0;
   for (std::size_t r = 0; r < trials.rows.size(); ++r) {
