@@ -13,10 +13,12 @@ Usage:
 
 RUN_DIR is the output folder of `dabench run` on a track-before-detect experiment:
   toy      (experiments/tbd-toy-fig1a.ini or tbd-toy.ini, `beliefs = true`): at one sweep point
-           (a reading), the frame's cell magnitudes |z_j| with the two objects, the prior alpha_1
-           (N(p_1, 0.3 I), drawn analytically) and, per tracker, the belief of potential object 1
-           (label 0) as a 2-D histogram of beliefs.csv over [3, 5]^2 as the supplement's panels,
-           with its mean and the supplement's read-off peak of the matching panel (d), (e), (f).
+           (a reading), as the supplement's Fig. 1: (a) the frame's cell magnitudes |z_j| with the
+           two objects, (c) the prior alpha_1 (N(p_1, 0.3 I), drawn analytically; toy layout
+           only) and, per tracker, the belief of potential object 1 (label 0) of beliefs.csv over
+           p_1 +- 1 m ([3, 5]^2) as a Gaussian kernel density estimate, with the supplement's
+           read-off peak of the matching panel (d), (e) or (f), our mean and our mode (the KDE's
+           maximum, as reports/studies/tbd_toy.py); prints the mean and mode per tracker.
   run      trial 0 of a point: |z_j| of frames.csv at the given steps with the true tracks and
            positions (estimates.csv, algorithm `truth`) and each tracker's estimates at that
            step; and GOSPA over k of that trial per tracker (steps.csv).
@@ -40,9 +42,14 @@ import sys
 from collections import defaultdict
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from reports.studies.tbd_toy import kde_mode  # noqa: E402  (the REPORT's mode of a belief)
 
 SCRIPT = "tbd_figures.py"
 
@@ -96,6 +103,15 @@ def frame_image(frames, point, k):
 # The supplement's Fig. 1 (d), (e), (f): where PO 1's belief peaks, read off the panels (m);
 # reports/studies/tbd_toy.py holds the same readings for the REPORT's verdicts.
 FIG1_PEAKS = {"d": (4.47, 4.31), "e": (4.14, 4.13), "f": (4.25, 4.12)}
+TOY_PRIOR_VARIANCE = 0.3  # m²: α_n = N(p_n, 0.3 I) of the toy layout (scenarios/tbd/tbd.cpp)
+TOY_WINDOW = 1.0  # m: the belief panels show p_1 ± 1 m, the supplement's [3, 5]²
+TOY_GRID = 200  # density samples per axis of a belief panel
+# The belief panels' markers: the supplement's read-off peak, our belief's mean and its KDE mode.
+TOY_MARKS = {
+    "supplement's peak": dict(marker="X", markersize=10, color="white", markeredgecolor="black"),
+    "our mean": dict(marker="o", markersize=5, color="white", markeredgecolor="black"),
+    "our mode": dict(marker="P", markersize=10, color="magenta", markeredgecolor="black"),
+}
 
 
 def fig1_panel(spec):
@@ -106,53 +122,127 @@ def fig1_panel(spec):
     return "f" if "exact_kappa=true" in spec else "e"
 
 
+def po1_particles(beliefs, spec):
+    """PO 1's (label 0) particles of a tracker as (xy [n, 2], normalised weights), identical
+    particles pooled as in reports/studies/tbd_toy.py (a resampled belief repeats them)."""
+    pooled = defaultdict(float)
+    for r in beliefs:
+        if r["algorithm"] == spec and r["label"] == "0":
+            pooled[(float(r["x"]), float(r["y"]))] += float(r["weight"])
+    if not pooled:
+        fail(f"toy: beliefs.csv has no particle of PO 1 (label 0) for {spec}")
+    w = np.array(list(pooled.values()))
+    return np.array(list(pooled)), w / np.sum(w)
+
+
+def belief_density(xy, w, sd, xs, ys):
+    """The Gaussian kernel density estimate of weighted particles on the grid xs × ys ([y, x]),
+    with the bandwidth of tbd_toy.kde_mode (Scott's per axis: sd · ESS^(-1/6))."""
+    h = np.maximum(sd * np.sum(w * w) ** (1.0 / 6.0), 1e-9)
+    gx, gy = (np.exp(-0.5 * ((grid[:, None] - xy[None, :, i]) / h[i]) ** 2) / (math.sqrt(2 * math.pi) * h[i])
+              for i, grid in enumerate((xs, ys)))
+    return (gy * w[None, :]) @ gx.T
+
+
+def small_colorbar(fig, shown, ax, text):
+    bar = fig.colorbar(shown, ax=ax, shrink=0.8)
+    bar.ax.tick_params(labelsize=7)
+    bar.ax.yaxis.get_offset_text().set_fontsize(7)
+    bar.set_label(text, fontsize=7)
+
+
+def draw_frame(fig, ax, image, columns, rows_, truth):
+    """Panel (a): |z_j| with the objects, as the supplement's (red object 1, black object 2)."""
+    shown = ax.imshow(image, origin="lower", extent=(0, columns, 0, rows_), cmap="viridis", vmin=0)
+    for index, (x, y) in enumerate(truth):
+        ax.plot([x], [y], "x", color="red" if index == 0 else "black", markersize=7, markeredgewidth=2,
+                label=f"object {index + 1}")
+    ax.legend(loc="upper left", fontsize=7, framealpha=0.8)
+    ax.set_title("(a) |z_j| and the objects", fontsize=9)
+    small_colorbar(fig, shown, ax, "|z_j|")
+
+
+def draw_prior(fig, ax, p1, window):
+    """Panel (c): α_1, N(p_1, 0.3 I), drawn analytically."""
+    xs, ys = (np.linspace(lo, hi, TOY_GRID) for lo, hi in window)
+    d2 = (xs[None, :] - p1[0]) ** 2 + (ys[:, None] - p1[1]) ** 2
+    density = np.exp(-d2 / (2 * TOY_PRIOR_VARIANCE)) / (2 * math.pi * TOY_PRIOR_VARIANCE)
+    shown = ax.imshow(density, origin="lower", extent=(*window[0], *window[1]), cmap="jet", vmin=0)
+    ax.set_title("(c) α₁(x, 1)", fontsize=9)
+    small_colorbar(fig, shown, ax, "density (m⁻²)")
+
+
+def draw_belief(fig, ax, spec, xy, w, window):
+    """A belief panel: PO 1's density by spec over the window with the supplement's peak of the
+    matching panel and our mean and mode (a marker outside the window is not drawn; the title
+    gives the numbers, the panel the share in view when under half). Returns (panel, mean, mode)."""
+    mean = w @ xy
+    sd = np.sqrt(w @ (xy - mean) ** 2)
+    mode = kde_mode(xy, w, sd)
+    xs, ys = (np.linspace(lo, hi, TOY_GRID) for lo, hi in window)
+    shown = ax.imshow(belief_density(xy, w, sd, xs, ys), origin="lower", extent=(*window[0], *window[1]),
+                      cmap="jet", vmin=0)
+    small_colorbar(fig, shown, ax, "density (m⁻²)")
+    panel = fig1_panel(spec)
+    for name, (x, y) in (("supplement's peak", FIG1_PEAKS[panel]), ("our mode", mode), ("our mean", mean)):
+        ax.plot([x], [y], linestyle="none", **TOY_MARKS[name])
+    ax.set_xlim(*window[0])
+    ax.set_ylim(*window[1])
+    inside = np.all((xy >= [window[0][0], window[1][0]]) & (xy <= [window[0][1], window[1][1]]), axis=1)
+    if w @ inside < 0.5:
+        ax.text(0.5, 0.5, f"{100 * (w @ inside):.0f} % of the belief in view", transform=ax.transAxes,
+                ha="center", color="white", fontsize=8)
+    ax.set_title(f"{label(spec)}\nFig. 1({panel}) peak ({FIG1_PEAKS[panel][0]:.2f}, {FIG1_PEAKS[panel][1]:.2f}); "
+                 f"ours: mean ({mean[0]:.2f}, {mean[1]:.2f}),\nmode ({mode[0]:.2f}, {mode[1]:.2f})", fontsize=7)
+    return panel, mean, mode
+
+
+def draw_toy_legend(ax):
+    """The spare panel: the belief panels' legend."""
+    handles = [Line2D([], [], linestyle="none", label=name, **marks) for name, marks in TOY_MARKS.items()]
+    ax.legend(handles=handles, loc="center", fontsize=9, title="belief of PO 1 (label 0), KDE", title_fontsize=9)
+    ax.axis("off")
+
+
 def figure_toy(run, point, out):
+    """Supplement Fig. 1 at one sweep point: (a), (c) where the run is the toy layout, then one
+    belief panel per tracker and the legend, on two rows."""
     frames = rows(os.path.join(run, "frames.csv"))
     estimates = rows(os.path.join(run, "estimates.csv"))
-    beliefs = [r for r in rows(os.path.join(run, "beliefs.csv")) if r["point"] == point]
+    beliefs = [r for r in rows(os.path.join(run, "beliefs.csv")) if r["point"] == point and r["k"] == "1"]
     image, columns, rows_ = frame_image(frames, point, 1)
-    truth = [(float(r["x"]), float(r["y"])) for r in estimates if r["algorithm"] == "truth" and r["point"] == point]
+    truth = [(float(r["x"]), float(r["y"])) for r in estimates
+             if r["algorithm"] == "truth" and r["point"] == point and r["k"] == "1"]
     trackers = list(dict.fromkeys(r["algorithm"] for r in beliefs))
-    if len(truth) < 1 or not trackers:
+    if not truth or not trackers:
         fail(f"toy: point {point} needs the truth in estimates.csv and the trackers' beliefs in beliefs.csv (beliefs = true)")
+    prior = beliefs[0].get("layout") == "toy"  # α_1 is known: the toy layout's N(p_1, 0.3 I)
+    panels = 1 + prior + len(trackers) + 1
+    columns_ = math.ceil(panels / 2)
+    fig, grid = plt.subplots(2, columns_, figsize=(3.4 * columns_, 6.8), constrained_layout=True)
+    axes = list(grid.flat)
     reading = beliefs[0].get("signal", "")
-    panels = 2 + len(trackers)
-    fig, axes = plt.subplots(1, panels, figsize=(3.3 * panels, 3.6), constrained_layout=True)
-    fig.suptitle(f"{os.path.basename(os.path.normpath(run))}, point {point}" + (f": reading {reading.upper()}" if reading else ""))
-    ax = axes[0]
-    shown = ax.imshow(image, origin="lower", extent=(0, columns, 0, rows_), cmap="viridis")
-    ax.plot(*zip(*truth), "r.", markersize=6)
-    ax.set_title("(a) |z_j| and the objects")
-    fig.colorbar(shown, ax=ax, shrink=0.8)
-    # alpha_1: N(p_1, 0.3 I) on a fine grid around object 1.
+    frame = beliefs[0].get("frame") or "drawn"
+    fig.suptitle(f"{os.path.basename(os.path.normpath(run))}, point {point}"
+                 + (f": reading {reading.upper()}" if reading else "") + f" (frame: {frame})")
+    draw_frame(fig, axes[0], image, columns, rows_, truth)
     p1 = truth[0]
-    lo_x, hi_x, lo_y, hi_y = p1[0] - 1.0, p1[0] + 1.0, p1[1] - 1.0, p1[1] + 1.0  # the supplement's [3, 5]^2
-    n = 120
-    grid = [[math.exp(-((lo_x + (i + 0.5) * (hi_x - lo_x) / n - p1[0]) ** 2 +
-                        (lo_y + (j + 0.5) * (hi_y - lo_y) / n - p1[1]) ** 2) / (2 * 0.3))
-             for i in range(n)] for j in range(n)]
-    axes[1].imshow(grid, origin="lower", extent=(lo_x, hi_x, lo_y, hi_y), cmap="jet")
-    axes[1].set_title("(c) α₁(x, 1)")
-    for index, spec in enumerate(trackers):
-        ax = axes[2 + index]
-        samples = [r for r in beliefs if r["algorithm"] == spec and r["label"] == "0"]
-        xs = [float(r["x"]) for r in samples]
-        ys = [float(r["y"]) for r in samples]
-        ws = [float(r["weight"]) for r in samples]
-        ax.hist2d(xs, ys, bins=50, range=[[lo_x, hi_x], [lo_y, hi_y]], weights=ws, cmap="jet")
-        mx = sum(w * x for w, x in zip(ws, xs)) / sum(ws)
-        my = sum(w * y for w, y in zip(ws, ys)) / sum(ws)
-        panel = fig1_panel(spec)
-        peak = FIG1_PEAKS[panel]
-        ax.plot([peak[0]], [peak[1]], "wx", markersize=11, markeredgewidth=2.5, label=f"supplement's peak ({panel})")
-        ax.plot([mx], [my], "o", color="white", markeredgecolor="black", markersize=6, label="our mean")
-        ax.set_title(f"{label(spec)}", fontsize=8)
-        ax.legend(loc="lower right", fontsize=6, framealpha=0.6)
-        print(f"{label(spec)}: belief mean of PO 1 ({mx:.3f}, {my:.3f}); the supplement's peak ({panel}) {peak}")
-    for ax in axes:
+    window = ((p1[0] - TOY_WINDOW, p1[0] + TOY_WINDOW), (p1[1] - TOY_WINDOW, p1[1] + TOY_WINDOW))
+    if prior:
+        draw_prior(fig, axes[1], p1, window)
+    for ax, spec in zip(axes[1 + prior:], trackers):
+        xy, w = po1_particles(beliefs, spec)
+        panel, mean, mode = draw_belief(fig, ax, spec, xy, w, window)
+        print(f"{label(spec)}: belief of PO 1 mean ({mean[0]:.3f}, {mean[1]:.3f}), mode ({mode[0]:.3f}, "
+              f"{mode[1]:.3f}); the supplement's peak ({panel}) {FIG1_PEAKS[panel]}")
+    draw_toy_legend(axes[panels - 1])
+    for ax in axes[panels:]:
+        ax.axis("off")
+    for ax in axes[:panels - 1]:
         ax.set_aspect("equal")
-        ax.set_xlabel("x (m)")
-    axes[0].set_ylabel("y (m)")
+        ax.set_xlabel("x (m)", fontsize=8)
+        ax.set_ylabel("y (m)", fontsize=8)
+        ax.tick_params(labelsize=7)
     save(fig, out)
 
 
