@@ -104,8 +104,11 @@ bool CellMessages::run(const TbdSensor& sensor, double amplitude, const Eigen::M
   begin(sensor, amplitude, frame, objects, options.support_radius);
   const int count = static_cast<int>(objects.size());
   if (options.exact) {
-    for (int n = 0; n < count; ++n) {  // κ^(0) ≡ 1: the first exact pass reads the others' own factors
-      std::fill_n(work_[n].own_factor.begin(), static_cast<std::size_t>(work_[n].window.cells()) * objects[n]->size(), 1.0);
+    exact_lambda_.resize(count);
+    for (int n = 0; n < count; ++n) {  // κ^(0) ≡ 1: λ = 0 for the first exact pass
+      const std::size_t pairs = static_cast<std::size_t>(work_[n].window.cells()) * objects[n]->size();
+      std::fill_n(work_[n].own_factor.begin(), pairs, 1.0);
+      exact_lambda_[n].assign(pairs, 0.0);
     }
     std::vector<int> reach(sensor.cells(), 0);
     for (int n = 0; n < count; ++n) {
@@ -465,8 +468,10 @@ bool CellMessages::exact_log_ratios(const std::vector<ParticleObject*>& objects)
     const Work& work = work_[m];
     const int p = other.size();
     log_other_weight.resize(p + 1);
-    const double* own = &work.own_factor[static_cast<std::size_t>(c) * p];
-    for (int i = 0; i < p; ++i) log_other_weight[i] = std::log(other.weight[i] * other.existence * own[i]) + work.total[i];
+    // log of w r exp(Σ_{j'≠j} λ) from λ itself: exp(−λ) (own_factor) underflows once λ > 745.
+    const double* lambda = &exact_lambda_[m][static_cast<std::size_t>(c) * p];
+    const double log_existence = std::log(other.existence);
+    for (int i = 0; i < p; ++i) log_other_weight[i] = std::log(other.weight[i]) + log_existence + work.total[i] - lambda[i];
     log_other_weight[p] = std::log1p(-other.existence);
     const double log_norm = log_sum_exp(log_other_weight, p + 1, kMinusInfinity);
     for (double& v : log_other_weight) v -= log_norm;
@@ -530,6 +535,7 @@ bool CellMessages::exact_log_ratios(const std::vector<ParticleObject*>& objects)
       }
     }
   }
+  exact_lambda_.swap(next);
   return true;
 }
 

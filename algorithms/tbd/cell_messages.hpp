@@ -172,6 +172,7 @@ class CellMessages {
   std::vector<const ParticleObject*> objects_;  // of the last run()
   bool outgoing_moments_ready_ = false;  // the last run() left β^(L+1) moments in its POs' terms
   std::vector<CellTotals> totals_;  // per cell of the frame: the Σ_n of eqs (5), (9)
+  std::vector<std::vector<double>> exact_lambda_;  // exact runs: each PO's λ per [window cell][particle]
   std::vector<double> shifted_;       // scratch: one PO's (log) weights
   std::vector<double> ones_;          // own factors of κ^(0) ≡ 1 (moments from the prior)
   Work drawn_;                        // scratch: log_ratios_at()'s spread tables

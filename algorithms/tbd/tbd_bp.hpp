@@ -14,8 +14,11 @@
 //     others' κ̃^(ℓ−1)). Flooding oscillates with period 2 wherever two POs can explain the
 //     same energy — each sees the other's claim and gives the object up, then both reclaim it
 //     — so a duplicate pair is never resolved at even L (and at odd L both are dropped); the
-//     serial schedule lets one PO keep the object and the other see it explained
-//     (tests/tbd/test_cell_message_schedules.cpp, two POs on one object, L = 1..4).
+//     serial schedule lets one PO keep the object and the other see it explained: the second
+//     in order, which meets the first's given-up claim (tests/tbd/test_cell_message_schedules.cpp,
+//     two POs on one object, D2, L = 1..4). Under D1 the swings die down instead, and two POs
+//     on one object both keep it from L = 2 under either schedule (measured, r⁻ = 0.9): D1's
+//     variance-only messages explain little away.
 //  3. New POs: one per data cell j (the letter's "new object hypothesis for each data cell"),
 //     α(x,1) ∝ (μ_B/J) f_B,j(x), α(x,0) ∝ 1, so r⁻ = (μ_B/J)/(1 + μ_B/J); f_B,j is uniform
 //     over cell j's square with velocity ~ N(0, σ_v² I₂). Since μ_j(x), C_j(x) depend on the

@@ -803,9 +803,10 @@ TEST_CASE("tbd cell messages: exact kappa is computed in the log domain: a brigh
   // Gaussian of eq (5) in that cell is below e^{−3000}, so a sum of densities underflows to 0 and
   // λ = log 0 − log 0; the log-domain sums still give the brute-force marginals at L = 2.
   for (const TbdSignal signal : {TbdSignal::fluctuating, TbdSignal::deterministic}) {
-    INFO(signal_name(signal));
+  for (const double noise : {0.05, 0.01, 0.001}) {  // small noise: |λ| beyond 745, where exp(−λ) underflows too
+    INFO(signal_name(signal) << ", noise variance " << noise);
     Pair p = make_two(signal, 1.5, 3.5, 0);
-    p.model.sensor.noise_variance = 0.05;
+    p.model.sensor.noise_variance = noise;
     p.frame.col(2 * p.model.sensor.columns + 2) = Eigen::Vector2d(60.0, 0.0);
     const std::vector<CellWindow> windows{CellWindow{0, 3, 0, 3}, CellWindow{2, 5, 2, 5}};
     const std::vector<Marginal> exact = brute_force(p.model, p.objects, windows, p.frame);
@@ -822,6 +823,7 @@ TEST_CASE("tbd cell messages: exact kappa is computed in the log domain: a brigh
       CHECK(bp.existence == close(exact[n].existence, 1e-9, 1e-12));
       for (std::size_t i = 0; i < bp.weights.size(); ++i) CHECK(bp.weights[i] == close(exact[n].weights[i], 1e-9, 1e-12));
     }
+  }
   }
 }
 
