@@ -66,9 +66,14 @@ def _log_i0(x):
     return out
 
 
+def _rice_log_density(a, nu, s):
+    """log Rice(a; nu, s) elementwise (broadcast), for per-component variance s."""
+    return np.log(a / s) - (a * a + nu * nu) / (2.0 * s) + _log_i0(a * nu / s)
+
+
 def _rice_log_likelihood(a, nu, s):
     """sum of log Rice(a; nu, s) for per-component variance s."""
-    return float(np.sum(np.log(a / s) - (a * a + nu * nu) / (2.0 * s) + _log_i0(a * nu / s)))
+    return float(np.sum(_rice_log_density(a, nu, s)))
 
 
 def fig1_log_likelihood(frame, rho, spread):
@@ -120,8 +125,7 @@ def fig1_table(frame):
     rho = RHO_GRID[:, None, None]
     nu = np.sqrt(rho * GAMMA) * g[None]
     var = NOISE + (1.0 - rho) * GAMMA / 2.0 * g[None]
-    log_i0 = _log_i0(a * nu / var)
-    return np.sum(np.log(a / var) - (a * a + nu * nu) / (2.0 * var) + log_i0, axis=2)  # [rho, spread]
+    return np.sum(_rice_log_density(a, nu, var), axis=2)  # [rho, spread]
 
 
 def fit(root):

@@ -134,6 +134,21 @@ Serial serial_reference(const TbdSensor& s, double gamma, const Eigen::Matrix2Xd
   return out;
 }
 
+// Existence log-odds of every PO after L iterations of `serial` or flooding messages, with the
+// tracker's window margin 4σ_h.
+std::vector<double> log_odds_after(const TbdSensor& s, const Eigen::Matrix2Xd& frame, std::vector<ParticleObject>& objects,
+                                   int iterations, bool serial) {
+  CellMessages messages;
+  CellMessageOptions options;
+  options.iterations = iterations;
+  options.support_radius = 4.0 * std::sqrt(s.spread_variance);
+  options.serial = serial;
+  REQUIRE(messages.run(s, 60.0, frame, pointers(objects), options));
+  std::vector<double> out;
+  for (int n = 0; n < static_cast<int>(objects.size()); ++n) out.push_back(messages.existence_log_odds(n));
+  return out;
+}
+
 TbdSensor small_sensor(TbdSignal signal) {
   TbdSensor s;
   s.columns = s.rows = 5;
@@ -204,17 +219,9 @@ TEST_CASE("tbd cell messages: flooding over the new POs duplicates an object at 
     std::vector<int> claims(4);
     std::vector<double> best(4);
     for (const int iterations : {1, 2, 3}) {
-      CellMessages messages;
-      CellMessageOptions options;
-      options.iterations = iterations;
-      options.support_radius = 4.0 * std::sqrt(s.spread_variance);
-      options.serial = false;
-      REQUIRE(messages.run(s, 60.0, frame, pointers(births), options));
-      best[iterations] = -1e300;
-      for (int b = 0; b < s.cells(); ++b) {
-        best[iterations] = std::max(best[iterations], messages.existence_log_odds(b));
-        if (messages.existence_log_odds(b) > 0.0) ++claims[iterations];
-      }
+      const std::vector<double> log_odds = log_odds_after(s, frame, births, iterations, false);
+      best[iterations] = *std::max_element(log_odds.begin(), log_odds.end());
+      claims[iterations] = static_cast<int>(std::count_if(log_odds.begin(), log_odds.end(), [](double v) { return v > 0.0; }));
     }
     INFO("new POs with r > 0.5 at L = 1, 2, 3: " << claims[1] << ", " << claims[2] << ", " << claims[3]
                                                 << "; best log-odds " << best[1] << ", " << best[2] << ", " << best[3]);
@@ -246,16 +253,8 @@ TEST_CASE("tbd cell messages: flooding keeps two POs on one object both or neith
   }
   for (const int iterations : {1, 2, 3, 4}) {
     INFO("L = " << iterations);
-    const auto existence = [&](bool serial) {
-      CellMessages messages;
-      CellMessageOptions options;
-      options.iterations = iterations;
-      options.support_radius = 4.0 * std::sqrt(s.spread_variance);
-      options.serial = serial;
-      REQUIRE(messages.run(s, 60.0, frame, pointers(objects), options));
-      return std::vector<double>{messages.existence_log_odds(0), messages.existence_log_odds(1)};
-    };
-    const std::vector<double> flooding = existence(false), serial = existence(true);
+    const std::vector<double> flooding = log_odds_after(s, frame, objects, iterations, false);
+    const std::vector<double> serial = log_odds_after(s, frame, objects, iterations, true);
     INFO("flooding log-odds " << flooding[0] << ", " << flooding[1] << "; serial " << serial[0] << ", " << serial[1]);
     // Flooding: both POs see the same thing, so both drop the object (at L = 1 each sees the
     // other's prior claim) or both keep it (at L = 2 each sees the other give it up): period 2.
