@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -17,6 +19,7 @@ constexpr double kDegree = kPi / 180.0;
 constexpr double kWedge = kPi / 2.0;     // bearing range of the region seen from a corner
 constexpr double kCutoffSigmas = 37.0;   // beyond this the factor (< 1e-290) is stored as 0
 constexpr int kMaxParticles = 10'000'000;
+constexpr double kMaxSiteDistance = 1e4;  // |site coordinate| bound: farther, the wedge is a sliver
 
 // Angle difference wrapped to [−π, π).
 double wrap(double angle) { return angle - 2.0 * kPi * std::floor((angle + kPi) / (2.0 * kPi)); }
@@ -87,6 +90,13 @@ std::string BearingsOptions::validate() const {
   if (scans_per_sensor < 1 || scans_per_sensor > 1000) return fmt::format("scans_per_sensor = {} must be in 1..1000", scans_per_sensor);
   if (!(probe_weight > 0.0 && probe_weight <= 1e-3)) return fmt::format("probe_weight = {} must be in (0, 1e-3]", probe_weight);
   if (init_corner < 0 || init_corner > 3) return fmt::format("init_corner = {} must be in 0..3", init_corner);
+  if (init_sensor == BearingsScenario::kInitSite) {
+    const double reach = std::max(std::fabs(init_site_x), std::fabs(init_site_y));
+    if (!(reach >= BearingsScenario::kHalfWidth && reach <= kMaxSiteDistance)) {
+      return fmt::format("init_site = ({}, {}) must lie outside the open region (-100, 100)^2 and within {} of the origin",
+                         init_site_x, init_site_y, kMaxSiteDistance);
+    }
+  }
   return {};
 }
 
@@ -102,7 +112,49 @@ double BearingsScenario::ray_length(double relative_bearing) {
   return 2.0 * kHalfWidth / std::max(std::cos(relative_bearing), std::sin(relative_bearing));
 }
 
-BearingsScenario::BearingsScenario(const Options& options) : options_(options) {}
+BearingsScenario::InitView BearingsScenario::corner_view(int corner) {
+  return {sensor_position(corner), wedge_start(corner), kWedge, true};
+}
+
+BearingsScenario::InitView BearingsScenario::site_view(const Eigen::Vector2d& site) {
+  for (int corner = 0; corner < 4; ++corner) {
+    if (site == sensor_position(corner)) return corner_view(corner);
+  }
+  // The region's bearings from outside it span its corners' (less than π, or π on an edge),
+  // measured from the direction of its centre so that no wrap falls inside the wedge.
+  const double reference = std::atan2(-site.y(), -site.x());
+  double lo = kPi, hi = -kPi;
+  for (int corner = 0; corner < 4; ++corner) {
+    const Eigen::Vector2d d = sensor_position(corner) - site;
+    const double angle = wrap(std::atan2(d.y(), d.x()) - reference);
+    lo = std::min(lo, angle);
+    hi = std::max(hi, angle);
+  }
+  return {site, reference + lo, hi - lo, false};
+}
+
+std::pair<double, double> BearingsScenario::ray_segment(const InitView& view, double relative_bearing) {
+  if (view.corner) return {0.0, ray_length(relative_bearing)};
+  const double angle = view.start + relative_bearing;
+  const double direction[2] = {std::cos(angle), std::sin(angle)};
+  const double origin[2] = {view.origin.x(), view.origin.y()};
+  double enter = 0.0, exit = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 2; ++axis) {  // slab test against [−W, W] on each axis
+    if (direction[axis] == 0.0) {
+      if (std::fabs(origin[axis]) > kHalfWidth) return {0.0, 0.0};
+      continue;
+    }
+    const double a = (-kHalfWidth - origin[axis]) / direction[axis];
+    const double b = (kHalfWidth - origin[axis]) / direction[axis];
+    enter = std::max(enter, std::min(a, b));
+    exit = std::min(exit, std::max(a, b));
+  }
+  return {enter, std::max(enter, exit)};
+}
+
+BearingsScenario::BearingsScenario(const Options& options) : options_(options) {
+  if (options_.init_sensor == kInitSite) site_ = site_view({options_.init_site_x, options_.init_site_y});
+}
 
 int BearingsScenario::scan_sensor(int scan) const {
   return options_.scan_order == kRoundRobin ? scan % 4 : scan / options_.scans_per_sensor;
@@ -128,9 +180,9 @@ void BearingsScenario::generate(RandomStream& rng, MultiScanSample& sample, Bear
   sample.problem.prior.resize(n);
   sample.truth_probe.assign(n, particles);
   sample.density_scale.resize(n);
-  const auto relative_bearing = [](const Eigen::Vector2d& x, int sensor) {
-    const Eigen::Vector2d d = x - sensor_position(sensor);
-    return wrap(std::atan2(d.y(), d.x()) - wedge_start(sensor));
+  const auto relative_bearing = [](const Eigen::Vector2d& x, const InitView& view) {
+    const Eigen::Vector2d d = x - view.origin;
+    return wrap(std::atan2(d.y(), d.x()) - view.start);
   };
   for (int i = 0; i < n; ++i) {
     BearingsDetails::Target& target = targets[i];
@@ -138,11 +190,10 @@ void BearingsScenario::generate(RandomStream& rng, MultiScanSample& sample, Bear
     const double y = rng.uniform(-kHalfWidth, kHalfWidth);
     target.truth = {x, y};
     const int drawn = std::min(static_cast<int>(rng.uniform() * 4.0), 3);
-    target.init_sensor = o.init_sensor == kInitRandom ? drawn : o.init_corner;
-    target.init_bearing = relative_bearing(target.truth, target.init_sensor) + init_sd * rng.normal();
-    const TruncatedNormal proposal(target.init_bearing, init_sd, 0.0, kWedge);
-    const Eigen::Vector2d corner = sensor_position(target.init_sensor);
-    const double start = wedge_start(target.init_sensor);
+    target.init_sensor = o.init_sensor == kInitRandom ? drawn : o.init_sensor == kInitCorner ? o.init_corner : -1;
+    const InitView view = o.init_sensor == kInitSite ? site_ : corner_view(target.init_sensor);
+    target.init_bearing = relative_bearing(target.truth, view) + init_sd * rng.normal();
+    const TruncatedNormal proposal(target.init_bearing, init_sd, 0.0, view.span);
     target.particles.resize(hypotheses, 2);
     target.proposal_density.resize(hypotheses);
     Vector& prior = sample.problem.prior[i];
@@ -151,19 +202,27 @@ void BearingsScenario::generate(RandomStream& rng, MultiScanSample& sample, Bear
     scale.resize(hypotheses);
     const double reference_area = 4.0 * kHalfWidth * kHalfWidth;  // keeps weights near 1
     for (int p = 0; p < particles; ++p) {
-      const double phi = proposal.sample(rng);
-      const double length = ray_length(phi);
-      const double range = length * std::sqrt(rng.uniform());
-      target.particles.row(p) = (corner + range * Eigen::Vector2d(std::cos(start + phi), std::sin(start + phi))).transpose();
-      target.proposal_density[p] = proposal.density(phi) * 2.0 / (length * length);
-      prior[p] = length * length / reference_area;  // ∝ π0/g
+      double phi = 0.0, near = 0.0, far = 0.0, area = 0.0;  // area: r_out² − r_in² (L(φ)² from a corner)
+      do {  // from a site a bearing on the wedge's edge grazes a corner (area 0): drawn again
+        phi = proposal.sample(rng);
+        std::tie(near, far) = ray_segment(view, phi);
+        area = far * far - near * near;
+      } while (!(area > 0.0));
+      const double u = rng.uniform();
+      const double range = near == 0.0 ? far * std::sqrt(u) : std::sqrt(near * near + u * area);
+      const double angle = view.start + phi;
+      target.particles.row(p) = (view.origin + range * Eigen::Vector2d(std::cos(angle), std::sin(angle))).transpose();
+      target.proposal_density[p] = proposal.density(phi) * 2.0 / area;
+      prior[p] = area / reference_area;  // ∝ π0/g
       scale[p] = particles * target.proposal_density[p];
     }
-    const double phi_truth = relative_bearing(target.truth, target.init_sensor);
-    const double length_truth = ray_length(phi_truth);
+    const double phi_truth = relative_bearing(target.truth, view);
+    const auto [near_truth, far_truth] = ray_segment(view, phi_truth);
+    const double area_truth = far_truth * far_truth - near_truth * near_truth;
     target.particles.row(particles) = target.truth.transpose();
-    target.proposal_density[particles] = proposal.density(phi_truth) * 2.0 / (length_truth * length_truth);
-    prior[particles] = o.probe_weight * length_truth * length_truth / reference_area;
+    target.proposal_density[particles] = proposal.density(phi_truth) * 2.0 / area_truth;
+    // ε·(r_out² − r_in²), written so that from a corner (r_in = 0) it rounds as ε·L·L did.
+    prior[particles] = (o.probe_weight * far_truth * far_truth - o.probe_weight * near_truth * near_truth) / reference_area;
     scale[particles] = particles * target.proposal_density[particles] / o.probe_weight;
   }
 

@@ -17,8 +17,10 @@
 //    paper initialises tracks "from one sensor … from a single location"; `random` (default)
 //    draws a corner uniformly per target, `corner` takes init_corner for every target (the
 //    uniform is drawn either way, so the two readings share the draws up to the first target
-//    whose corner differs; its particles then take other numbers). That sensor also scans, as
-//    one of the four.
+//    whose corner differs; its particles then take other numbers), `site` takes the point
+//    (init_site_x, init_site_y) outside the open region for every target: a separate accurate
+//    sensor that does not scan (the paper's four corner sensors make "four scans in total"; at a
+//    corner, `site` is `corner`, since that corner's sensor scans either way).
 //  - Scans: scans_per_sensor scans of each of the four sensors, so 4 or 12 scans, in the order
 //    `scan_order` [R]: `round_robin` (default; scan t uses sensor t mod 4) or `grouped` (scan t
 //    uses sensor t / scans_per_sensor: all of sensor 0's scans, then sensor 1's, ...). The
@@ -40,6 +42,9 @@
 // known exactly, so the importance weights ψ^i(p) = π0(x_p)/g(x_p) ∝ L(φ_p)² make the weighted
 // particles an exact (unbiased up to self-normalisation) representation of π0. Since L varies
 // little across a 0.1° fan, the weights are nearly equal (this is almost exact sampling).
+// From a site, φ is relative to the smallest bearing of the region seen from it, the wedge is
+// that of the region's corners (at most π), the ray meets the region on [r_in(φ), r_out(φ)],
+// r² is uniform on [r_in², r_out²] and L(φ)² above becomes r_out² − r_in² (r_in = 0 at a corner).
 // Each track also gets a truth probe (harness/multi_scan/scenario.hpp): one more hypothesis at
 // the true position, last in the track, with prior ε·L(φ*)² (ε = probe_weight), and
 // density_scale N·g(x) for particles, N·g(x*)/ε for the probe (harness/multi_scan/particle_metrics.hpp).
@@ -64,6 +69,7 @@
 #include <Eigen/Core>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "harness/core/params.hpp"
@@ -82,6 +88,8 @@ struct BearingsOptions {
   int scans_per_sensor = 1;     // rounds of the four sensors: 1 → 4 scans, 3 → 12 (paper: 1, 3)
   int init_sensor = 0;          // random: each target from a corner drawn uniformly; corner: all from init_corner [R]
   int init_corner = 0;          // init_sensor = corner: its index, 0..3 (counter-clockwise from (−100, −100))
+  double init_site_x = -100.0;  // init_sensor = site: its position, outside the open region (default:
+  double init_site_y = -100.0;  //   corner 0, where site draws what corner draws)
   int scan_order = 0;           // round_robin: scan t uses sensor t mod 4; grouped: each sensor's scans together [R]
   double probe_weight = 1e-6;   // ε: truth probe's prior relative to a particle at its place
 
@@ -95,9 +103,12 @@ struct BearingsOptions {
     p.add("init_noise_deg", init_noise_deg, "s.d. of the initialising bearing, degrees, > 0");
     p.add("scans_per_sensor", scans_per_sensor, "scans of each of the 4 sensors (round robin), >= 1");
     p.add("probe_weight", probe_weight, "truth probe prior relative to a particle there, in (0, 1e-3]");
-    p.add_choice("init_sensor", init_sensor, {"random", "corner"},
-                 "which sensor initialises a track: a uniformly drawn corner per target, or init_corner for all");
+    p.add_choice("init_sensor", init_sensor, {"random", "corner", "site"},
+                 "which sensor initialises a track: a uniformly drawn corner per target, init_corner for all, or a "
+                 "non-scanning sensor at (init_site_x, init_site_y) for all");
     p.add("init_corner", init_corner, "init_sensor = corner: the corner, 0..3 counter-clockwise from (-100, -100)");
+    p.add("init_site_x", init_site_x, "init_sensor = site: x of the site, outside the open region (-100, 100)^2");
+    p.add("init_site_y", init_site_y, "init_sensor = site: y of the site");
     p.add_choice("scan_order", scan_order, {"round_robin", "grouped"},
                  "round_robin: scan t uses sensor t mod 4; grouped: scans_per_sensor scans of sensor 0, then 1, ...");
   }
@@ -108,8 +119,8 @@ struct BearingsOptions {
 struct BearingsDetails {
   struct Target {
     Eigen::Vector2d truth;
-    int init_sensor = 0;          // sensor of the initialising bearing
-    double init_bearing = 0.0;    // its measured bearing relative to the sensor's wedge, rad
+    int init_sensor = 0;          // corner of the initialising bearing, −1 for a site
+    double init_bearing = 0.0;    // its measured bearing relative to the start of the wedge, rad
     Eigen::MatrixX2d particles;   // N + 1 rows: the particles, then the truth probe (= truth)
     Vector proposal_density;      // g(x) at every row of `particles`
   };
@@ -130,7 +141,18 @@ class BearingsScenario final : public MultiScanScenario {
   static Eigen::Vector2d sensor_position(int sensor);
   static double wedge_start(int sensor);       // θ_k, rad
   static double ray_length(double relative_bearing);  // L(φ)
-  static constexpr int kInitRandom = 0, kInitCorner = 1;  // BearingsOptions::init_sensor
+  static constexpr int kInitRandom = 0, kInitCorner = 1, kInitSite = 2;  // BearingsOptions::init_sensor
+  // Where a track's initialising bearing is measured from, and the region seen from there.
+  struct InitView {
+    Eigen::Vector2d origin;
+    double start = 0.0;         // absolute bearing of the wedge's first edge, rad
+    double span = 0.0;          // the wedge's width, rad (π/2 at a corner)
+    bool corner = true;         // r_in = 0 and r_out = ray_length(φ)
+  };
+  static InitView corner_view(int corner);
+  static InitView site_view(const Eigen::Vector2d& site);
+  // The ray at relative bearing φ meets the region on [r_in, r_out] (r_in = 0 from a corner).
+  static std::pair<double, double> ray_segment(const InitView& view, double relative_bearing);
   static constexpr int kRoundRobin = 0, kGrouped = 1;     // BearingsOptions::scan_order
   int scan_sensor(int scan) const;                        // the sensor of scan t (scan_order)
 
@@ -142,6 +164,7 @@ class BearingsScenario final : public MultiScanScenario {
 
  private:
   Options options_;
+  InitView site_;  // init_sensor = site: the view from (init_site_x, init_site_y)
 };
 
 }  // namespace dabench
