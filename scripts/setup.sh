@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev libboost-program-options-dev libfmt-dev
   catch2 libbenchmark-dev
   libopenmpi-dev openmpi-bin
-  python3-matplotlib python3-numpy
+  python3-matplotlib python3-numpy python3-scipy
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -85,3 +85,11 @@ def duration(seconds):
     if seconds < 6000:
         return f"{seconds / 60:.1f} min"
     return f"{seconds / 3600:.1f} h"
+
+
+def interval(lo, hi, se):
+    """"[lo, hi]" to the decimals that show se (se_decimals; 3 significant digits without one)."""
+    d = se_decimals(se)
+    if d is None:
+        return f"[{sig(lo)}, {sig(hi)}]"
+    return f"[{lo:.{d}f}, {hi:.{d}f}]"

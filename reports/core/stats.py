@@ -72,7 +72,14 @@ def bootstrap_se(groups, statistic, resamples=RESAMPLES, seed=SEED):
     pooled = np.concatenate([np.asarray(g, dtype=float) for g in groups if len(g)])
     value = float(statistic(pooled))
     draws = cluster_bootstrap(groups, statistic, resamples, seed)
-    return value, float(np.std(draws, ddof=1)), (float(np.percentile(draws, 2.5)), float(np.percentile(draws, 97.5)))
+    return value, float(np.std(draws, ddof=1)), percentile_interval(draws)
+
+
+def percentile_interval(draws, level=0.95):
+    """The bootstrap percentile interval of a statistic from its resampled values: their
+    (1 - level) / 2 and (1 + level) / 2 quantiles (numpy's linear interpolation)."""
+    tail = 50.0 * (1.0 - level)
+    return float(np.percentile(draws, tail)), float(np.percentile(draws, 100.0 - tail))
 
 
 def parametric_resamples(means, ses, resamples, seed=SEED):

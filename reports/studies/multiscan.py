@@ -51,6 +51,19 @@ PAPER_MSBP_TAIL = "12%"  # Sec. IV and footnote 9 (Fig. 4): HPD >= 0.9999 "in 12
 # P = 300 / 1000 / 10 000 (../shared/multiscan-fast-solver.md, §1 and §3, [M]).
 NOTES_PROTOTYPE_CVS_ITERATIONS = "163 / 150 / 156 Newton steps at 300 / 1000 / 10 000 particles"
 
+# The open readings of Sec. IV (issue 28) on Fig. 4's setting: experiments/multiscan-reading-*.ini,
+# each at 10 000 / 1000 / 300 particles for READING_METHODS; the first is the scenario's default
+# (DEFAULT_READING), the reading of Figs 3-5.
+READINGS = [("random", "random corner, round robin (the default)"), ("corner", "corner 0, round robin"),
+            ("grouped", "random corner, grouped by sensor"), ("corner-grouped", "corner 0, grouped by sensor")]
+SHORT = {"random": "random/round robin", "corner": "corner/round robin", "grouped": "random/grouped",
+         "corner-grouped": "corner/grouped"}  # a reading in running text
+DEFAULT_READING = "random"
+READING_METHODS = ["jpda-bp", "cv", "cvs:gamma=0.95"]
+READING_KEY = {"jpda-bp": "jpda_bp", "cv": "cv", "cvs:gamma=0.95": "cvs095"}  # template value names
+PARTICLE_COUNTS_RUN = f"{FOLDER}/particle-counts"  # MSBP, CVS(0.75), CVS(0.55) at 1000 and 300 particles
+PARTICLE_COUNT_METHODS = ["msbp", "cvs:gamma=0.75", "cvs:gamma=0.55"]
+
 RUNS = [
     Run(f"{FOLDER}/particles", "./build/dabench run experiments/multiscan-particles.ini --force",
         "calibration of exact Bayes: one target, 300 to 10 000 particles"),
@@ -58,16 +71,21 @@ RUNS = [
     Run(f"{FOLDER}/fig4", "./build/dabench run experiments/multiscan-fig4.ini --force", "Fig. 4: 12 scans"),
     Run(f"{FOLDER}/fig5", "./build/dabench run experiments/multiscan-fig5.ini --force",
         "Fig. 5: 12 scans, Fig. 4's trials"),
+] + [Run(f"{FOLDER}/reading-{name}", f"./build/dabench run experiments/multiscan-reading-{name}.ini --force",
+         f"reading: {text}; 10 000 / 1000 / 300 particles") for name, text in READINGS] + [
+    Run(PARTICLE_COUNTS_RUN, "./build/dabench run experiments/multiscan-particle-counts.ini --force",
+        "MSBP and CVS(0.75 / 0.55) at 1000 and 300 particles (Fig. 4's setting)"),
     Run(COST_RUN, "./build/dabench run experiments/multiscan-algorithm2-cost.ini --threads 1 --force",
         "Algorithm 2 vs Newton on one 10 000-particle CVS(0.95) trial, one thread: run it last",
         optional=True),
     Run(COST_RUN_1000, "./build/dabench run experiments/multiscan-algorithm2-cost-1000.ini --threads 1 --force",
         "the same trial at 1000 particles, one thread (about 20 min)", optional=True),
 ]
+
 STEPS = [Step(f"/usr/bin/python3 plots/multiscan_cdf.py {FOLDER}/{name}/targets.csv --out {FOLDER}/{name}.png",
               f"{name}.png") for name in ("particles", "fig3", "fig4", "fig5")]
 
-STATISTICS = ("p80", "entropy", "ge_near", "ge_tail")  # rows of target_statistics()
+STATISTICS = ("p80", "entropy", "ge_near", "ge_tail", "p80_likelihood")  # rows of target_statistics()
 
 
 # ----------------------------------------------------------------------------- reading and resampling
@@ -81,11 +99,17 @@ class Targets:
     trial: np.ndarray  # the trial of each row
     hpd: np.ndarray  # rows × methods
     entropy: np.ndarray  # rows × methods
+    hpd_likelihood: np.ndarray  # rows × methods: HPD with particles ranked by likelihood (NaN: not recorded)
+
+    def has_likelihood(self):
+        """Whether the run recorded hpd_likelihood (runs made before that column have none)."""
+        return bool(np.all(np.isfinite(self.hpd_likelihood)))
 
 
 def read_targets(root, folder):
     """{point: Targets} of folder/targets.csv; a point keeps the (trial, target) pairs that every
-    method solved, so that methods are compared on the same targets."""
+    method solved, so that methods are compared on the same targets. hpd_likelihood is NaN where
+    the run did not record it."""
     rows = data.read_rows(root, f"{folder}/targets.csv")
     if not rows:
         raise data.DataError(f"{folder}/targets.csv: no rows")
@@ -97,16 +121,18 @@ def read_targets(root, folder):
         if r["algorithm"] not in order:
             order.append(r["algorithm"])
         hpd, entropy = data.num(r, "hpd"), data.num(r, "entropy")
+        likelihood = data.num(r, "hpd_likelihood") if r.get("hpd_likelihood") else None
         if hpd is not None and entropy is not None:
-            cells.setdefault((point, r["algorithm"]), {})[(int(r["trial"]), int(r["target"]))] = (hpd, entropy)
+            cells.setdefault((point, r["algorithm"]), {})[(int(r["trial"]), int(r["target"]))] = (
+                hpd, entropy, math.nan if likelihood is None else likelihood)
     out = {}
     for point in sorted(params):
         keys = sorted(set.intersection(*(set(cells.get((point, m), {})) for m in methods[point])))
         if not keys:
             raise data.DataError(f"{folder}/targets.csv: point {point} has no target that every method solved")
-        values = np.array([[cells[(point, m)][k] for m in methods[point]] for k in keys])  # rows × methods × 2
+        values = np.array([[cells[(point, m)][k] for m in methods[point]] for k in keys])  # rows × methods × 3
         out[point] = Targets(params[point], methods[point], np.array([k[0] for k in keys]),
-                             values[:, :, 0], values[:, :, 1])
+                             values[:, :, 0], values[:, :, 1], values[:, :, 2])
     return out
 
 
@@ -128,12 +154,14 @@ def trial_resamples(trial, columns, statistic):
 
 
 def target_statistics(columns):
-    """Rows STATISTICS × methods of [HPD | entropy] columns: p80 (numpy's linear percentile, as
-    plots/multiscan_cdf.py), median entropy, shares of HPD >= NEAR_TAIL and >= TAIL."""
-    m = columns.shape[1] // 2
-    hpd, entropy = columns[:, :m], columns[:, m:]
+    """Rows STATISTICS × methods of [HPD | entropy | likelihood-ranked HPD] columns: p80 (numpy's
+    linear percentile, as plots/multiscan_cdf.py), median entropy, shares of HPD >= NEAR_TAIL and
+    >= TAIL, p80 of the likelihood-ranked HPD (NaN where not recorded)."""
+    m = columns.shape[1] // 3
+    hpd, entropy, likelihood = columns[:, :m], columns[:, m:2 * m], columns[:, 2 * m:]
     return np.stack([np.percentile(hpd, 80, axis=0), np.median(entropy, axis=0),
-                     np.mean(hpd >= NEAR_TAIL, axis=0), np.mean(hpd >= TAIL, axis=0)])
+                     np.mean(hpd >= NEAR_TAIL, axis=0), np.mean(hpd >= TAIL, axis=0),
+                     np.percentile(likelihood, 80, axis=0)])
 
 
 def ks_uniform(values):
@@ -148,8 +176,8 @@ class Figure:
 
     def __init__(self, targets, label):
         self.label, self.targets, self.methods = label, targets, targets.methods
-        point, draws = trial_resamples(targets.trial, np.hstack([targets.hpd, targets.entropy]),
-                                       target_statistics)
+        point, draws = trial_resamples(targets.trial, np.hstack([targets.hpd, targets.entropy,
+                                                                 targets.hpd_likelihood]), target_statistics)
         self.point = {s: point[i][None, :] for i, s in enumerate(STATISTICS)}  # 1 × methods
         self.draws = {s: draws[:, i, :] for i, s in enumerate(STATISTICS)}  # resamples × methods
 
@@ -164,8 +192,13 @@ class Figure:
     def se(self, statistic, method):
         return float(np.std(self.draws[statistic][:, self.index(method)], ddof=1))
 
-    def ks(self, method):
-        return ks_uniform(self.targets.hpd[:, self.index(method)])
+    def interval(self, statistic, method):
+        """The 95 % bootstrap percentile interval over trials (core.stats.percentile_interval)."""
+        return stats.percentile_interval(self.draws[statistic][:, self.index(method)])
+
+    def ks(self, method, ranking="hpd"):
+        values = self.targets.hpd if ranking == "hpd" else self.targets.hpd_likelihood
+        return ks_uniform(values[:, self.index(method)])
 
     def trials(self):
         return len(np.unique(self.targets.trial))
@@ -176,6 +209,11 @@ class Figure:
 
     def pm(self, statistic, method):
         return markdown.pm(self.value(statistic, method), self.se(statistic, method))
+
+    def pm_interval(self, statistic, method):
+        """"value ± SE [lo, hi]": the bootstrap SE and 95 % percentile interval, to the SE's decimals."""
+        se = self.se(statistic, method)
+        return f"{self.pm(statistic, method)} {markdown.interval(*self.interval(statistic, method), se)}"
 
     def pm_percent(self, statistic, method):
         return markdown.pm(100 * self.value(statistic, method), 100 * self.se(statistic, method)) + " %"
@@ -194,6 +232,11 @@ def load_figures(root):
 
 def label(method):
     return LABEL.get(method, method)
+
+
+def particles_text(n):
+    """A particle count as the REPORT prints it, thousands set off by a space (10 000)."""
+    return f"{n:,}".replace(",", " ")
 
 
 def scans(params):
@@ -275,7 +318,7 @@ def calibration_section(report, root):
     U(0, 1) up to the particle approximation; KS distance against its 5 % critical value (one
     target per trial: independent values) and p80 against 0.80 with its bootstrap SE."""
     points = read_targets(root, f"{FOLDER}/particles")
-    rows, by_particles = [], {}
+    rows, by_particles, likelihood = [], {}, {}
     for point in sorted(points, key=lambda p: (scans(points[p].params), data.num(points[p].params, "particles"))):
         t = points[point]
         figure = Figure(t, f"particles point {point}")
@@ -285,13 +328,21 @@ def calibration_section(report, root):
         p80, se = figure.value("p80", t.methods[0]), figure.se("p80", t.methods[0])
         atom = float(np.mean(hpd == 0.0))
         by_particles.setdefault(particles, []).append((scans(t.params), d, critical, p80, se))
-        rows.append([f"{particles:,}".replace(",", " "), scans(t.params), len(hpd), markdown.fixed(d, 3),
-                     markdown.fixed(critical, 3), markdown.pm(p80, se), markdown.percent(atom)])
-    report.value("calibration.table", markdown.table(
-        ["particles", "scans", "targets", "KS distance", "5 % critical value", "p80", "HPD = 0"], rows, "rrrrrrr"))
+        row = [particles_text(particles), scans(t.params), len(hpd), markdown.fixed(d, 3),
+               markdown.fixed(critical, 3), markdown.pm(p80, se), markdown.percent(atom)]
+        if t.has_likelihood():
+            d_l = figure.ks(t.methods[0], "likelihood")
+            likelihood.setdefault(particles, []).append((scans(t.params), d_l, critical))
+            row += [markdown.fixed(d_l, 3), figure.pm("p80_likelihood", t.methods[0])]
+        rows.append(row)
+    header = ["particles", "scans", "targets", "KS distance", "5 % critical value", "p80", "HPD = 0"]
+    if likelihood:
+        header += ["KS distance, likelihood ranking", "p80, likelihood ranking"]
+    report.value("calibration.table", markdown.table(header, rows, "r" * len(header)))
     most, fewest = max(by_particles), min(by_particles)
-    report.value("calibration.most", f"{most:,}".replace(",", " "))
-    report.value("calibration.fewest", f"{fewest:,}".replace(",", " "))
+    claim_likelihood_calibrated(report, likelihood.get(most, []), particles_text(most))
+    report.value("calibration.most", particles_text(most))
+    report.value("calibration.fewest", particles_text(fewest))
 
     parts, ours = [], []
     for n_scans, d, critical, p80, se in by_particles[most]:
@@ -314,18 +365,37 @@ def calibration_section(report, root):
         "each scan count: KS distance above its 5 % critical value (uniformity rejected) agrees, else within error"))
 
 
+def claim_likelihood_calibrated(report, rows, particles):
+    """E3: the likelihood-ranked HPD of exact Bayes is calibrated at the study's particle count
+    (its KS distance at most the 5 % critical value at each scan count); the column is shown
+    beside eq (92)'s only while this holds (report value calibration.likelihood_ok)."""
+    parts = [verdicts.WITHIN_ERROR if d <= critical else verdicts.DIFFERS for _, d, critical in rows]
+    verdict = verdicts.worst(parts) if parts else verdicts.NOT_RUN
+    report.value("calibration.likelihood_ok", "yes" if verdict == verdicts.WITHIN_ERROR else "no")
+    report.claim(Claim(
+        "E3", f"At {particles} particles the HPD value with particles ranked by likelihood (`hpd_likelihood`) is "
+        "calibrated for exact Bayes too", "ours", "–",
+        "; ".join(f"{n} scans: KS {d:.3f} (critical {c:.3f})" for n, d, c in rows) or "not recorded", verdict,
+        "each scan count: KS distance at most its 5 % critical value (agrees within error), else differs"))
+
+
 # ----------------------------------------------------------------------------- the paper's statements
 
 
 def figure_table(figure):
-    """Per method: targets, p80 ± SE and its side of x = y, KS distance, shares of HPD >= 0.99 and
-    >= 0.9999, median entropy ± SE."""
+    """Per method: p80 ± SE [95 % interval] and its side of x = y (and the likelihood-ranked p80
+    where the run recorded it), KS distance, shares of HPD >= 0.99 and >= 0.9999, median entropy ± SE."""
+    likelihood = figure.targets.has_likelihood()
     rows = []
     for m in figure.methods:
-        rows.append([label(m), figure.pm("p80", m), side_of_calibration(figure, m), markdown.fixed(figure.ks(m), 3),
-                     figure.pm_percent("ge_near", m), figure.pm_percent("ge_tail", m), figure.pm("entropy", m)])
-    return markdown.table(["method", "p80", "side of x = y", "KS distance", "HPD ≥ 0.99", "HPD ≥ 0.9999",
-                           "median entropy (nats)"], rows, "lrlrrrr")
+        row = [label(m), figure.pm_interval("p80", m), side_of_calibration(figure, m), markdown.fixed(figure.ks(m), 3),
+               figure.pm_percent("ge_near", m), figure.pm_percent("ge_tail", m), figure.pm("entropy", m)]
+        rows.append(row[:2] + [figure.pm_interval("p80_likelihood", m)] + row[2:] if likelihood else row)
+    header = ["method", "p80 [95 % interval]", "side of x = y", "KS distance", "HPD ≥ 0.99", "HPD ≥ 0.9999",
+              "median entropy (nats)"]
+    if likelihood:
+        header.insert(2, "p80, likelihood ranking")
+    return markdown.table(header, rows, "lr" + ("r" if likelihood else "") + "lrrrr")
 
 
 def next_smallest(figure, statistic, method):
@@ -378,7 +448,8 @@ def claims_jpda(report, fig3, fig4):
     p3, se3 = fig3.value("p80", "jpda-bp"), fig3.se("p80", "jpda-bp")
     report.claim(Claim(
         "P5", "JPDA-BP produces non-conservative results: its HPD CDF lies below x = y (four scans)", "Sec. IV, Fig. 3",
-        "qualitative", f"{fig3.pm('p80', 'jpda-bp')}, KS {fig3.ks('jpda-bp'):.3f}",
+        "qualitative", f"{fig3.pm_interval('p80', 'jpda-bp')}: {side_of_calibration(fig3, 'jpda-bp')}; "
+        f"KS {fig3.ks('jpda-bp'):.3f}",
         verdicts.compare_bound(p3, se3, CALIBRATED_P80, holds_below=False),
         "compare_bound: p80 above 0.80 beyond two bootstrap SE"))
     p4, se4 = fig4.value("p80", "jpda-bp"), fig4.se("p80", "jpda-bp")
@@ -480,6 +551,109 @@ def figure_readings(report, figures):
         report.value(f"{name}.table", figure_table(figure))
         report.value(f"{name}.targets", str(len(figure.targets.trial)))
         report.value(f"{name}.trials", str(figure.trials()))
+        if "jpda-bp" in figure.methods:
+            report.value(f"{name}.jpda_side", side_of_calibration(figure, "jpda-bp"))
+
+
+# ----------------------------------------------------------------------------- readings and particle counts
+
+
+def by_particles(root, folder):
+    """{particles: Figure} of a run whose sweep points differ only in the particle count."""
+    return {int(data.num(t.params, "particles")): Figure(t, f"{folder} point {p}")
+            for p, t in read_targets(root, folder).items()}
+
+
+def reading_tables(report, readings):
+    """One table per method of READING_METHODS: p80 [95 % interval] per reading and particle count,
+    its difference from the default reading at the same count (independent trials: SEs combined),
+    the likelihood-ranked p80 (while E3 keeps that column), and the verdict against the paper's p80."""
+    default = readings.get(DEFAULT_READING, {})
+    show_likelihood = report.values.get("calibration.likelihood_ok") == "yes"
+    lines = []  # per method: the cells within error of the paper's p80
+    for method in READING_METHODS:
+        rows, agreeing = [], []
+        for name, text in READINGS:
+            for particles, figure in sorted(readings.get(name, {}).items(), reverse=True):
+                p, se = figure.value("p80", method), figure.se("p80", method)
+                verdict = vs_paper_percent(p, se, PAPER_P80[method])
+                if verdict == verdicts.WITHIN_ERROR:
+                    agreeing.append(f"{SHORT[name]} at {particles_text(particles)}")
+                base = default.get(particles)
+                if name == DEFAULT_READING or base is None:
+                    delta = "–"
+                else:
+                    delta_se = verdicts.combined_se(se, base.se("p80", method))
+                    decimals = markdown.se_decimals(delta_se) or 3
+                    delta = f"{markdown.signed(p - base.value('p80', method), decimals)} ± {delta_se:.{decimals}f}"
+                row = [text, particles_text(particles), figure.pm_interval("p80", method), delta]
+                if show_likelihood:
+                    row.append(figure.pm_interval("p80_likelihood", method))
+                rows.append(row + [verdict])
+        header = ["reading (initialising sensor, scan order)", "particles", "p80 [95 % interval]",
+                  "p80 − random-corner reading's (SEs combined)"] + (["p80, likelihood ranking"] if show_likelihood else []) + \
+                 [f"against the paper's {float(percent_text(PAPER_P80[method])) / 100:.2f}"]
+        key = READING_KEY[method]
+        report.value(f"readings.{key}", markdown.table(header, rows, "lrrr" + ("r" if show_likelihood else "") + "l")
+                     if rows else "Not run.")
+        lines.append(f"{label(method)} (paper {float(percent_text(PAPER_P80[method])) / 100:.2f}): "
+                     + ("; ".join(agreeing) if agreeing else "none"))
+    report.value("readings.agreeing", markdown.bullets(lines))
+
+
+def particle_count_table(report, counts, fig4):
+    """MSBP's and CVS(0.75 / 0.55)'s statistics at 300 and 1000 particles (particle-counts run)
+    and at 10 000 (Fig. 4), each against the paper's number."""
+    figures = dict(counts)
+    figures[int(data.num(fig4.targets.params, "particles"))] = fig4
+    rows = []
+    for particles, figure in sorted(figures.items()):
+        tail, tail_se = figure.value("ge_tail", "msbp"), figure.se("ge_tail", "msbp")
+        row = [particles_text(particles) + (" (Fig. 4)" if figure is fig4 else ""), figure.pm_interval("p80", "msbp"),
+               f"{figure.pm_percent('ge_tail', 'msbp')} ({vs_paper_percent(tail, tail_se, PAPER_MSBP_TAIL)})",
+               figure.pm_percent("ge_near", "msbp")]
+        for method in PARTICLE_COUNT_METHODS[1:]:
+            verdict = vs_paper_percent(figure.value("p80", method), figure.se("p80", method), PAPER_P80[method])
+            row.append(f"{figure.pm_interval('p80', method)} ({verdict})")
+        rows.append(row)
+    report.value("readings.particle_counts", markdown.table(
+        ["particles", "MSBP p80", f"MSBP HPD ≥ 0.9999 (paper {PAPER_MSBP_TAIL.replace('%', ' %')})", "MSBP HPD ≥ 0.99",
+         f"CVS(0.75) p80 (paper {float(percent_text(PAPER_P80['cvs:gamma=0.75'])) / 100:.2f})",
+         f"CVS(0.55) p80 (paper {float(percent_text(PAPER_P80['cvs:gamma=0.55'])) / 100:.2f})"], rows, "lrrrrr"))
+
+
+def claim_default_reading_repeats_fig4(report, readings, fig4):
+    """O2 (ours): the default reading's 10 000-particle point has Fig. 4's seed, point and scenario,
+    so its HPD values and entropies must equal Fig. 4's exactly (the same trials, a later build)."""
+    figure = readings.get(DEFAULT_READING, {}).get(int(data.num(fig4.targets.params, "particles")))
+    if figure is None:
+        report.claim(Claim("O2", "The default reading at 10 000 particles repeats Fig. 4's values exactly", "ours",
+                           "–", "not run", verdicts.NOT_RUN, "a count: identical values"))
+        return
+    a, b = figure.targets, fig4.targets
+    aligned = len(a.trial) == len(b.trial) and np.array_equal(a.trial, b.trial)  # the same (trial, target) rows
+    same = total = 0
+    for method in READING_METHODS:
+        i, j = a.methods.index(method), b.methods.index(method)
+        total += len(b.trial)
+        if aligned:
+            same += int(np.sum((a.hpd[:, i] == b.hpd[:, j]) & (a.entropy[:, i] == b.entropy[:, j])))
+    report.claim(Claim(
+        "O2", "The default reading's 10 000-particle point (Fig. 4's seed, point and scenario, a later build) "
+        "repeats Fig. 4's HPD values and entropies of JPDA-BP, CV and CVS(0.95) exactly", "ours", "–",
+        f"{same} of {total} (target, method) pairs identical", verdicts.AGREES if same == total else verdicts.DIFFERS,
+        "a count (no sampling error): every HPD value and entropy bit-identical"))
+
+
+def readings_section(report, root, fig4):
+    """The readings × particle-count tables, the particle counts of the other methods, and O2."""
+    readings = {name: by_particles(root, f"{FOLDER}/reading-{name}") for name, _ in READINGS
+                if os.path.exists(data.path(root, FOLDER, f"reading-{name}", "targets.csv"))}
+    reading_tables(report, readings)
+    counts = by_particles(root, PARTICLE_COUNTS_RUN) if os.path.exists(
+        data.path(root, PARTICLE_COUNTS_RUN, "targets.csv")) else {}
+    particle_count_table(report, counts, fig4)
+    claim_default_reading_repeats_fig4(report, readings, fig4)
 
 
 # ----------------------------------------------------------------------------- cost
@@ -646,7 +820,7 @@ def algorithm2_cost(report, root):
 def setup_values(report, root, figures):
     """Particles per track, trials per figure and the mean number of targets, from the runs."""
     params = figures["fig4"].targets.params
-    report.value("setup.particles", f"{int(data.num(params, 'particles')):,}".replace(",", " "))
+    report.value("setup.particles", particles_text(int(data.num(params, "particles"))))
     report.value("setup.mean_targets", f"{data.num(params, 'mean_targets'):g}")
     trials = sorted({data.read_meta(root, f"{FOLDER}/{name}").get("trials_per_point") for name, _ in FIGURES})
     report.value("setup.trials", " / ".join(str(t) for t in trials))
@@ -671,9 +845,10 @@ def checks(report):
     claims_jpda(report, fig3, fig4)
     claims_cv_cvs(report, fig3, fig4)
     claims_fig5(report, fig5)
+    readings_section(report, root, fig4)
     cost_section(report, root)
     paper_ids = [f"P{i}" for i in range(1, 17)]
-    ours = ["E1", "E2", "O1"]
+    ours = ["E1", "E2", "E3", "O1", "O2"]
     report.value("paper_claims", report.claims_table(paper_ids))
     report.value("paper_claims.counts", report.verdict_counts(paper_ids))
     report.value("our_claims", report.claims_table(ours, "statement (ours)"))

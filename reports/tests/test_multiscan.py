@@ -1,6 +1,6 @@
-"""The multiscan study's checks: its paired trial resamples are core.stats' bootstrap, a tampered
-copy of the committed data changes the verdict it feeds, and the Algorithm 2 cost run is reported
-once it is committed ("not run" before)."""
+"""The multiscan study's checks: its paired trial resamples (and their intervals) are core.stats'
+bootstrap, a tampered copy of the committed data changes the verdict it feeds, and the Algorithm 2
+cost run is reported once it is committed ("not run" before)."""
 
 import csv
 import os
@@ -29,9 +29,12 @@ class PairedResamples(unittest.TestCase):
         values = rng.random(400)
         point, draws = multiscan.trial_resamples(trial, values[:, None], lambda c: np.percentile(c, 80, axis=0))
         groups = [values[trial == t] for t in np.unique(trial)]
-        value, se, _ = stats.bootstrap_se(groups, lambda v: np.percentile(v, 80))
+        value, se, interval = stats.bootstrap_se(groups, lambda v: np.percentile(v, 80))
         self.assertAlmostEqual(point[0], value, places=14)
         self.assertAlmostEqual(float(np.std(draws[:, 0], ddof=1)), se, places=14)
+        ours = stats.percentile_interval(draws[:, 0])  # what Figure.interval shows in the tables
+        self.assertAlmostEqual(ours[0], interval[0], places=14)
+        self.assertAlmostEqual(ours[1], interval[1], places=14)
 
 
 def rewrite_csv(path, change):
@@ -90,6 +93,17 @@ class CopyOfTheData(unittest.TestCase):
                 row["hpd"] = "0.5"
         rewrite_csv(self.data("fig4", "targets.csv"), out_of_tail)
         self.assertEqual(self.verdict(self.render(), "P4"), "differs")
+
+    def test_one_changed_hpd_value_breaks_o2(self):
+        """O2 compares the random-corner reading's 10 000-particle point with Fig. 4 value by value."""
+        self.assertEqual(self.verdict(self.render(), "O2"), "agrees")
+        first = {}
+
+        def one_value(row):
+            if row["point"] == "0" and row["algorithm"] == "cv" and not first:
+                first["done"] = row["hpd"] = repr(float(row["hpd"]) + 1e-12)
+        rewrite_csv(self.data("reading-random", "targets.csv"), one_value)
+        self.assertEqual(self.verdict(self.render(), "O2"), "differs")
 
     def test_algorithm2_cost_is_reported_once_committed(self):
         """Both solvers' times and their largest HPD difference (absent: "not run", tested above)."""
