@@ -174,7 +174,10 @@ void ColumnDualSolver::finish_gradient() {
 
 double ColumnDualSolver::largest_inner_residual() const {
   double largest = 0.0;
-  for (const TrackEvaluation& e : evaluations_) largest = std::max(largest, e.inner_residual);
+  for (const TrackEvaluation& e : evaluations_) {
+    if (std::isnan(e.inner_residual)) return e.inner_residual;  // std::max would drop it
+    largest = std::max(largest, e.inner_residual);
+  }
   return largest;
 }
 
@@ -319,8 +322,11 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
     const auto focus = std::find_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return !scan.solved; }) - scans_.begin();
     ready = presolve(static_cast<int>(focus), report) && scans_[focus].gamma > 0.0 && only_gamma_scan(static_cast<int>(focus));
   }
+  // Every failed evaluation ends the solve as skipped:numerical: the tracks' state is then not a
+  // solution at any σ, and no belief may be written from it.
+  const auto numerical_failure = [&report] { report.skipped = "numerical"; };
   if (ready ? !(evaluate_inner_value(sigma_) && (finish_gradient(), gradient_.allFinite())) : !evaluate(sigma_)) {
-    report.skipped = "numerical";
+    numerical_failure();
     return;
   }
   std::deque<std::pair<Vector, Vector>> history;  // L-BFGS (s, y) pairs of −D
@@ -340,7 +346,7 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
     if (inner_target < 0.1 * settings_.inner.tolerance ||
         (residual <= settings.tolerance && settings_.inner.tolerance > settings.inner.tolerance)) {
       settings_.inner.tolerance = residual <= settings.tolerance ? settings.inner.tolerance : inner_target;
-      if (!evaluate(sigma_)) break;
+      if (!evaluate(sigma_)) return numerical_failure();
       continue;
     }
     if (residual <= settings.tolerance && largest_inner_residual() <= settings.inner.tolerance) {
@@ -405,7 +411,7 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
     }
     ++iterations;
     if (!accepted) {  // no progress at floating-point resolution: stay at the last point
-      evaluate(sigma_);
+      if (!evaluate(sigma_)) return numerical_failure();
       break;
     }
     if (method == DualMethod::kLbfgs) {
@@ -418,11 +424,12 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
     }
     sigma_ = trial;
   }
+  const double residual = size > 0 ? gradient_.cwiseAbs().maxCoeff() : 0.0;
+  const double inner = largest_inner_residual();
+  if (!std::isfinite(residual) || !std::isfinite(inner)) return numerical_failure();
   for (Scan& scan : scans_) scan.solved = true;
   report.iterations += iterations;
-  const double residual = size > 0 ? gradient_.cwiseAbs().maxCoeff() : 0.0;
   report.residual = std::isnan(report.residual) ? residual : std::max(report.residual, residual);
-  const double inner = largest_inner_residual();
   report.inner_residual = std::isnan(report.inner_residual) ? inner : std::max(report.inner_residual, inner);
   if (!converged) report.converged = false;
 }

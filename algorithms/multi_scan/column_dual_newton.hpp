@@ -112,10 +112,12 @@ class ColumnDualSolver {
   // report.iterations (the presolve's block steps are not counted) and the backtracking steps
   // to report.line_search_steps; sets report.residual and report.inner_residual (the largest
   // over the solves so far); clears report.converged at the iteration cap; sets
-  // report.skipped = "numerical" if the dual cannot be evaluated at the start.
+  // report.skipped = "numerical" if the dual cannot be evaluated (at the start or at any later
+  // point, or its residual is not finite at the end).
   void solve(const ColumnDualSettings& settings, SolveReport& report);
 
-  // q^i(A) and q^{i,j}_t at the last evaluation.
+  // q^i(A) and q^{i,j}_t at the last evaluation; only after a solve that was not skipped (a
+  // failed evaluation leaves the tracks without beliefs).
   void write_beliefs(MultiScanBeliefs& beliefs) const;
 
   // For optimality checks: the pair beliefs q^i_t(A, a) (rows: the problem's hypotheses),
@@ -136,17 +138,17 @@ class ColumnDualSolver {
 
   // D at σ (value_) with the tracks' inner solves; `focus` joins every track's inner set. False
   // if not finite.
-  bool evaluate_value(const Vector& sigma, int focus = -1);
-  bool evaluate_inner_value(const Vector& sigma);  // the same after σ changed on the inner sets only
+  [[nodiscard]] bool evaluate_value(const Vector& sigma, int focus = -1);
+  [[nodiscard]] bool evaluate_inner_value(const Vector& sigma);  // the same after σ changed on the inner sets only
   void finish_gradient();                         // gradient_ at the last evaluation
-  bool evaluate(const Vector& sigma) { return evaluate_value(sigma) && (finish_gradient(), gradient_.allFinite()); }
+  [[nodiscard]] bool evaluate(const Vector& sigma) { return evaluate_value(sigma) && (finish_gradient(), gradient_.allFinite()); }
   double clutter_value(const Vector& sigma) const;  // −Σ_tj (β_t q⁰_tj + σ_tj)
   void split(const Vector& sigma);                  // stacked σ → per-scan vectors for the tracks
   double largest_inner_residual() const;
   void newton_direction(Vector& direction);
   void diagonal_scaling(Vector& scaling) const;     // 1 / diag(K)
   // Block Newton on the duals of `scan` alone; true if the tracks hold σ's evaluation after it.
-  bool presolve(int scan, SolveReport& report);
+  [[nodiscard]] bool presolve(int scan, SolveReport& report);
   bool only_gamma_scan(int t) const;  // no scan but t has γ > 0
 
   std::vector<TiltedTrack> track_pool_;  // kept between problems (with their buffers)

@@ -50,8 +50,8 @@ class MultiScanExact final : public MultiScanSolver {
     std::vector<double> weight;   // W_i(T), scaled by 1 / max_T W_i(T)
     std::vector<double> events;   // Z_i(T), accumulated by the search
   };
-  bool build_histories(const MultiScanProblem& problem);
-  bool descend(int track, double prefix);
+  [[nodiscard]] bool build_histories(const MultiScanProblem& problem);
+  [[nodiscard]] bool descend(int track, double prefix);
   void write_beliefs(const MultiScanProblem& problem, MultiScanBeliefs& beliefs) const;
   int digit(std::int64_t history, int scan) const;
 

@@ -139,8 +139,8 @@ class TiltedTrack {
   void build_candidates();                          // candidate_start_, candidates_ from the scans' lists
   bool is_inner(const Scan& scan, int j) const { return scan.gamma > 0.0 && scan.possible[j]; }
   void set_tilts(int t, const Vector& sigma);
-  bool multiply_evidence(int t, Vector& product, double& log_scale, double& pending);  // evidence of t into the product
-  bool inner_pass(const std::vector<Vector>& sigma);  // inner set at the current v: log Z, its marginals
+  [[nodiscard]] bool multiply_evidence(int t, Vector& product, double& log_scale, double& pending);  // evidence of t into the product
+  [[nodiscard]] bool inner_pass(const std::vector<Vector>& sigma);  // inner set at the current v: log Z, its marginals
   void form_product(const std::vector<Vector>& sigma);  // product_ = rest_ × the inner scans' evidence
   void scan_marginals(int t);
   TrackEvaluation inner_solve(const std::vector<Vector>& sigma, const InnerSolveSettings& settings);

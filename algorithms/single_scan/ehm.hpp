@@ -136,13 +136,13 @@ class Ehm final : public SingleScanSolver {
   int build_tables();  // returns the largest key space
   // The net of the current cluster (ehm.cpp): run_net = build_net, backward_pass, forward_pass.
   template <int W>
-  bool run_net(MarginalTable& marginals);
+  [[nodiscard]] bool run_net(MarginalTable& marginals);
   template <int W>
-  bool build_net();
+  [[nodiscard]] bool build_net();
   template <int W>
-  bool build_child_direct(int p, int ci);
+  [[nodiscard]] bool build_child_direct(int p, int ci);
   template <int W>
-  bool build_child_hashed(int p, int ci);
+  [[nodiscard]] bool build_child_hashed(int p, int ci);
   template <int W>
   double backward_pass();
   template <int W>

@@ -42,7 +42,7 @@ class ExactEnumeration final : public SingleScanSolver {
   void solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) override;
 
  private:
-  bool enumerate_cluster(int first, int last, MarginalTable& marginals);
+  [[nodiscard]] bool enumerate_cluster(int first, int last, MarginalTable& marginals);
   double descend(int depth, double prefix);
 
   Options options_;

@@ -117,7 +117,7 @@ class JunctionTreeBuilder {
   // Triangulates (step 1 above) and builds the clique tree. Returns false if no order keeps the
   // maximal cliques within `max_total_entries` table entries in all (an order is abandoned as
   // soon as one of its cliques alone exceeds that).
-  bool build(std::uint64_t max_total_entries);
+  [[nodiscard]] bool build(std::uint64_t max_total_entries);
 
   // Greedy elimination rules (step 1 above).
   enum class EliminationRule { min_fill, min_fill_by_index, min_weight, weighted_min_fill };
@@ -154,7 +154,7 @@ class JunctionTreeBuilder {
   std::vector<int> candidate_maximal_;
   EliminationRule rule_ = EliminationRule::min_fill;
   std::uint64_t total_clique_entries_ = 0;
-  bool eliminate(EliminationRule rule, std::uint64_t max_clique_entries);  // into candidate_*
+  [[nodiscard]] bool eliminate(EliminationRule rule, std::uint64_t max_clique_entries);  // into candidate_*
   std::uint64_t find_maximal_cliques();        // candidate_maximal_; returns their total entries
   std::vector<int> key_;                       // Prim: best separator size to the tree, or -1
   std::vector<int> key_parent_;
@@ -193,10 +193,10 @@ class JunctionTree final : public SingleScanSolver {
  private:
   enum class Weights { none, product, log_sum };
 
-  bool solve_cluster(int first, int last, MarginalTable& marginals);  // false = over budget
+  [[nodiscard]] bool solve_cluster(int first, int last, MarginalTable& marginals);  // false = over budget
   void solve_single(int target, MarginalTable& marginals);
   void load_cluster(int first, int last);  // states, potentials and the graph of eq (39)
-  bool layout_tables();                    // false = over budget or allocation failed
+  [[nodiscard]] bool layout_tables();                    // false = over budget or allocation failed
   void setup_pass(int clique, bool collect);
   void collect(int clique);
   void collect_log_domain(int clique);

@@ -441,7 +441,7 @@ void CellMessages::log_ratios_at(const Work& work, const ParticleObject& object,
   sum_log_ratios(work.terms, drawn_, object.size(), out, nullptr);
 }
 
-bool CellMessages::exact_log_ratios(const std::vector<ParticleObject*>& objects) {
+void CellMessages::exact_log_ratios(const std::vector<ParticleObject*>& objects) {
   const TbdSensor& s = *sensor_;
   const int count = static_cast<int>(objects.size());
   const double noise = s.noise_variance;
@@ -536,7 +536,6 @@ bool CellMessages::exact_log_ratios(const std::vector<ParticleObject*>& objects)
     }
   }
   exact_lambda_.swap(next);
-  return true;
 }
 
 void CellMessages::belief(const ParticleObject& object, Work& work) {

@@ -88,8 +88,8 @@ class CellMessages {
   // Σ_j λ^(L)_{n,j}(x^(i)) and existence_log_odds(n) is the belief's log r̃/(1 − r̃).
   // Returns false (and computes nothing) if `exact` is set and a cell is reached by more than
   // two POs.
-  bool run(const TbdSensor& sensor, double amplitude, const Eigen::Matrix2Xd& frame,
-           const std::vector<ParticleObject*>& objects, const CellMessageOptions& options);
+  [[nodiscard]] bool run(const TbdSensor& sensor, double amplitude, const Eigen::Matrix2Xd& frame,
+                         const std::vector<ParticleObject*>& objects, const CellMessageOptions& options);
 
   const std::vector<double>& total_log_ratio(int n) const { return work_[n].total; }
   double existence_log_odds(int n) const { return work_[n].log_odds; }
@@ -160,7 +160,7 @@ class CellMessages {
                       double* own_factor);
   // work.spread_x, work.spread_y for `object`'s particles over work.window.
   void tabulate_spread(const ParticleObject& object, Work& work) const;
-  bool exact_log_ratios(const std::vector<ParticleObject*>& objects);
+  void exact_log_ratios(const std::vector<ParticleObject*>& objects);
   void belief(const ParticleObject& object, Work& work);
 
   const TbdSensor* sensor_ = nullptr;

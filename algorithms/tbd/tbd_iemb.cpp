@@ -7,6 +7,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <fmt/format.h>
 
 #include "harness/tbd/registry.hpp"
 
@@ -479,7 +480,11 @@ void TbdIemb::start(const TbdProblem& problem) {
     for (int row = 0; row < sensor.rows; ++row) {
       for (int column = 0; column < sensor.columns; ++column) {
         birth_prior_.mean = Eigen::Vector4d(sensor.centre_x(column), sensor.centre_y(row), 0.0, 0.0);
-        predicted_moments(birth_prior_, scratch_work_);
+        if (!predicted_moments(birth_prior_, scratch_work_)) {
+          skip_ = true;
+          skip_reason_ = "failed:the new Bernoullis' prior covariance is not positive definite";
+          return;
+        }
         birth_field_.add(scratch_work_.window, scratch_work_.own, birth_prior_.existence);
       }
     }
@@ -487,12 +492,20 @@ void TbdIemb::start(const TbdProblem& problem) {
   cell_head_.assign(sensor.cells(), -1);
 }
 
-void TbdIemb::predicted_moments(const GaussianBernoulli& b, Work& work) {
+// The state after a failed step is no filter's state: this step and every later one are skipped.
+void TbdIemb::covariance_failure(SolveReport& report, int k) {
+  skip_ = true;
+  skip_reason_ = fmt::format("failed:step {}: a Bernoulli's covariance is not positive definite", k + 1);
+  report.skipped = skip_reason_;
+}
+
+bool TbdIemb::predicted_moments(const GaussianBernoulli& b, Work& work) {
   work.window = iemb_window(problem_->sensor, b.mean, b.covariance, margin_, options_.position_sigmas,
                             options_.max_window);
-  make_sigma_points(b.mean, b.covariance, sigma_);
+  if (!make_sigma_points(b.mean, b.covariance, sigma_)) return false;
   model_.evaluate(sigma_, work.window, h_, variance_);
   model_.moments(sigma_, work.window.cells(), h_, variance_, work.own);
+  return true;
 }
 
 IplfResult TbdIemb::update(const GaussianBernoulli& b, const Work& work, int max_iterations) {
@@ -553,7 +566,7 @@ void TbdIemb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& repo
   legacy_work_.resize(count);
   field_ = birth_field_;
   for (int i = 0; i < count; ++i) {
-    predicted_moments(legacy_[i], legacy_work_[i]);
+    if (!predicted_moments(legacy_[i], legacy_work_[i])) return covariance_failure(report, k);
     field_.add(legacy_work_[i].window, legacy_work_[i].own, legacy_[i].existence);
   }
 
@@ -575,10 +588,10 @@ void TbdIemb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& repo
   //    the legacy Bernoullis' terms at their posterior).
   field_ = birth_field_;
   for (const GaussianBernoulli& b : legacy_) {
-    predicted_moments(b, scratch_work_);
+    if (!predicted_moments(b, scratch_work_)) return covariance_failure(report, k);
     field_.add(scratch_work_.window, scratch_work_.own, b.existence);
   }
-  births();
+  if (!births()) return covariance_failure(report, k);
 
   for (const GaussianBernoulli& b : legacy_) {
     if (b.existence >= options_.detection_threshold) estimates.push_back({b.mean, b.existence, b.label});
@@ -592,8 +605,8 @@ void TbdIemb::step(int k, std::vector<TbdEstimate>& estimates, SolveReport& repo
 // against the field (which holds the candidates kept before it) and kept if r ≥
 // pruning_threshold and its mean is not within merge_distance of a kept one (per-cell lists
 // of kept means, so the search is local).
-void TbdIemb::births() {
-  if (!(birth_prior_.existence > 0.0)) return;
+bool TbdIemb::births() {
+  if (!(birth_prior_.existence > 0.0)) return true;
   const TbdSensor& sensor = problem_->sensor;
   GaussianBernoulli b = birth_prior_;
   const auto at_cell = [&](int j) {
@@ -602,7 +615,7 @@ void TbdIemb::births() {
   candidates_.clear();
   for (int j = 0; j < sensor.cells(); ++j) {
     at_cell(j);
-    predicted_moments(b, scratch_work_);
+    if (!predicted_moments(b, scratch_work_)) return false;
     const IplfResult result = update(b, scratch_work_, 1);
     if (updated_existence(b.existence, result) >= options_.pruning_threshold) {
       candidates_.push_back({j, result.log_present - result.log_absent});
@@ -621,7 +634,7 @@ void TbdIemb::births() {
   cell_next_.clear();
   for (const Candidate& candidate : candidates_) {
     at_cell(candidate.cell);
-    predicted_moments(b, scratch_work_);
+    if (!predicted_moments(b, scratch_work_)) return false;
     const IplfResult result = update(b, scratch_work_, options_.iterations);
     const double r = updated_existence(b.existence, result);
     if (!(r >= options_.pruning_threshold)) continue;
@@ -639,12 +652,13 @@ void TbdIemb::births() {
     // Kept: its predicted term leaves the field, its posterior term enters it.
     field_.remove(scratch_work_.window, scratch_work_.own, b.existence);
     legacy_.push_back({result.mean, result.covariance, r, next_label_++});
-    predicted_moments(legacy_.back(), scratch_work_);
+    if (!predicted_moments(legacy_.back(), scratch_work_)) return false;
     field_.add(scratch_work_.window, scratch_work_.own, r);
     cell_next_.push_back(cell_head_[home]);
     cell_head_[home] = static_cast<int>(cell_next_.size()) - 1;
   }
   for (std::size_t i = first; i < legacy_.size(); ++i) cell_head_[cell_of(legacy_[i].mean)] = -1;
+  return true;
 }
 
 void TbdIemb::beliefs(std::vector<TbdBeliefSample>& samples) const {

@@ -127,7 +127,7 @@ struct SigmaPoints {
   std::array<double, kCount> weights;               // W₀, then (1 − W₀)/(2n)
 };
 // L L ᵀ = n/(1 − W₀)·P (Cholesky). Returns false if P is not positive definite.
-bool make_sigma_points(const Eigen::Vector4d& mean, const Eigen::Matrix4d& covariance, SigmaPoints& out);
+[[nodiscard]] bool make_sigma_points(const Eigen::Vector4d& mean, const Eigen::Matrix4d& covariance, SigmaPoints& out);
 
 // Rows of a measurement vector at each sigma point (column s = point s).
 using SigmaMatrix = Eigen::Matrix<double, Eigen::Dynamic, SigmaPoints::kCount>;
@@ -345,9 +345,11 @@ class TbdIemb final : public TbdTracker {
     IembWindow window;
     CellMoments own;
   };
-  void predicted_moments(const GaussianBernoulli& b, Work& work);
+  // False if b's covariance has no Cholesky factor (no sigma points).
+  [[nodiscard]] bool predicted_moments(const GaussianBernoulli& b, Work& work);
+  void covariance_failure(SolveReport& report, int k);
   IplfResult update(const GaussianBernoulli& b, const Work& work, int max_iterations);
-  void births();  // appends the kept new Bernoullis to legacy_
+  [[nodiscard]] bool births();  // appends the kept new Bernoullis to legacy_; false as predicted_moments
 
   Options options_;
   const TbdProblem* problem_ = nullptr;

@@ -162,7 +162,7 @@ class Run {
 };
 
 // Synthetic measurement of eq (36) for one pseudo-target: false when its gated mass is ~0.
-bool synthetic_measurement(const ScanAssociation& scan, const Eigen::MatrixXd& measurements, int p,
+[[nodiscard]] bool synthetic_measurement(const ScanAssociation& scan, const Eigen::MatrixXd& measurements, int p,
                            const Eigen::MatrixXd& noise, ScanMeasurement& out);
 
 }  // namespace dabench::jdt_vb_detail

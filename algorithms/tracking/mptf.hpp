@@ -198,7 +198,7 @@ Matrix4 slant_state_jacobian(const MultipathMeasurementModel& sensor, int path, 
 
 // Ground estimate of a slant estimate under path τ (item 3); false if Gauss–Newton does not
 // reach a relative step of 1e-10 within `iterations`.
-bool ground_from_slant(const MultipathMeasurementModel& sensor, int path, const Estimate& slant, int iterations,
+[[nodiscard]] bool ground_from_slant(const MultipathMeasurementModel& sensor, int path, const Estimate& slant, int iterations,
                        Estimate& ground);
 
 // Information-weighted fusion of ground estimates (item 4); returns χ²(G).

@@ -82,7 +82,7 @@ class MurtyRanking {
 
   // Best event of the subproblem whose constraints are constraints_[offset ...]; on success
   // appends a node (solution, cost) and returns true.
-  bool solve_subproblem(std::size_t constraints, int forced, int forbidden);
+  [[nodiscard]] bool solve_subproblem(std::size_t constraints, int forced, int forbidden);
   double event_cost(const int* columns) const;
 
   const double* cost_ = nullptr;

@@ -9,6 +9,6 @@ namespace dabench {
 
 void append_csv_field(std::string& line, std::string_view field);
 // Splits one line (without its newline) into fields; false if a quote is left open.
-bool split_csv_line(std::string_view line, std::vector<std::string>& fields);
+[[nodiscard]] bool split_csv_line(std::string_view line, std::vector<std::string>& fields);
 
 }  // namespace dabench

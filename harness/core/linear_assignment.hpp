@@ -51,13 +51,13 @@ class LinearAssignment {
   // an empty problem). Returns false if every assignment uses a +∞ entry; column_of_row and
   // total_cost are then unspecified.
   // Throws std::invalid_argument if rows or cols is negative or an entry is NaN or −∞.
-  bool solve(const double* cost, int rows, int cols, std::vector<int>& column_of_row, double& total_cost);
+  [[nodiscard]] bool solve(const double* cost, int rows, int cols, std::vector<int>& column_of_row, double& total_cost);
 
  private:
   // The R ≤ C problem on `cost` (rows × cols, row-major); result in column_of_row_.
-  bool solve_wide(const double* cost, int rows, int cols);
+  [[nodiscard]] bool solve_wide(const double* cost, int rows, int cols);
   // One shortest augmenting path from the free row `start`; false if no free column is reachable.
-  bool augment(const double* cost, int cols, int start);
+  [[nodiscard]] bool augment(const double* cost, int cols, int start);
 
   std::vector<double> transposed_;  // cols × rows copy when rows > cols
   std::vector<double> row_dual_;    // u

@@ -93,7 +93,7 @@ std::vector<ParamList::Entry> default_entries() {
 }
 
 // Strict number parsing for the edge (whole string, finite values only).
-bool parse_double(std::string_view text, double& out);
+[[nodiscard]] bool parse_double(std::string_view text, double& out);
 bool parse_int64(std::string_view text, std::int64_t& out);  // also accepts integral "1e6"
 
 std::string_view trim(std::string_view text);

@@ -33,7 +33,7 @@ class MultipathMeasurementModel {
   virtual const Eigen::MatrixXd& noise_covariance(int path) const = 0;       // R^τ
   // A state x with h^τ(x) = y, components h^τ does not depend on set to 0; false if none
   // exists. Trackers use it to start tracks from single measurements.
-  virtual bool invert(int path, const Vector& measurement, Vector& state) const = 0;
+  [[nodiscard]] virtual bool invert(int path, const Vector& measurement, Vector& state) const = 0;
 };
 
 struct TrackingProblem {

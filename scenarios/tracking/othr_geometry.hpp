@@ -61,7 +61,7 @@ SlantJacobian slant_jacobian(const GroundState& x, const Path& path, double base
 // (ϑ̇ does not enter eq (57), so it is returned as 0). From ζ, g sin ϑ = 2 r_α sin ζ; g solves
 // r_α(g) + r_β(g) = r by Newton's method (r is increasing in g); then ϑ and ġ follow. Returns
 // false when no g ∈ (0, 4r] fits (r below the path's two layer heights' reach, or |sin ϑ| > 1).
-bool ground_state_from_slant(const SlantMeasurement& y, const Path& path, GroundState& x, double baseline = kBaseline);
+[[nodiscard]] bool ground_state_from_slant(const SlantMeasurement& y, const Path& path, GroundState& x, double baseline = kBaseline);
 
 // The four paths of Table II with a common noise covariance R = diag(σ_r², σ_ṙ², σ_ζ²).
 class OthrMeasurementModel final : public MultipathMeasurementModel {
@@ -74,7 +74,7 @@ class OthrMeasurementModel final : public MultipathMeasurementModel {
   Vector measure(int path, const Vector& state) const override;
   Eigen::MatrixXd jacobian(int path, const Vector& state) const override;
   const Eigen::MatrixXd& noise_covariance(int) const override { return noise_; }
-  bool invert(int path, const Vector& measurement, Vector& state) const override;
+  [[nodiscard]] bool invert(int path, const Vector& measurement, Vector& state) const override;
 
  private:
   Eigen::MatrixXd noise_;

@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "algorithms/multi_scan/column_dual_newton.hpp"
@@ -46,7 +47,7 @@ void solve_batch(DualSolve& run, const MultiScanProblem& problem, const std::vec
   run.solver.reweight(gamma, beta);
   run.report.reset();
   run.solver.solve(settings, run.report);
-  run.solver.write_beliefs(run.beliefs);
+  if (run.report.skipped.empty()) run.solver.write_beliefs(run.beliefs);
 }
 
 FreeEnergyPoint point_of(const ColumnDualSolver& solver, const MultiScanProblem& problem, const MultiScanBeliefs& beliefs) {
@@ -294,4 +295,23 @@ TEST_CASE("column dual: solver options") {
   CHECK_NOTHROW(make_multi_scan_solver("cvsh:gamma=1"));  // auto: Algorithm 2
   CHECK_THROWS_AS(make_multi_scan_solver("msbp:solver=newton"), InputError);
   CHECK_NOTHROW(make_multi_scan_solver("cv:solver=lbfgs,max_iterations=50"));
+}
+
+// A factor that overflows to infinity or is NaN makes the dual non-finite: the solve ends as
+// skipped:numerical (never beliefs from a failed evaluation), for Newton and L-BFGS.
+TEST_CASE("column dual: a non-finite factor ends the solve as skipped:numerical") {
+  const std::vector<double> gamma = {0.5, 0.5, 0.5};
+  const std::vector<double> beta = betas(KappaWeights::kLemma4, gamma);
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    for (const DualMethod method : {DualMethod::kNewton, DualMethod::kLbfgs}) {
+      MultiScanProblem problem = random_multi_scan_problem({3, 3, {2, 3, 2}, 0.1}, 41);
+      problem.scans[1].factor[0](1, 1) = bad;
+      DualSolve run;
+      ColumnDualSettings settings;
+      settings.method = method;
+      solve_batch(run, problem, gamma, beta, settings);
+      INFO("factor " << bad << (method == DualMethod::kNewton ? ", Newton" : ", L-BFGS"));
+      CHECK(run.report.skipped == "numerical");
+    }
+  }
 }
