@@ -19,6 +19,7 @@
 #include "harness/core/errors.hpp"
 #include "harness/core/experiment.hpp"
 #include "harness/core/heap_policy.hpp"
+#include "harness/core/input_file.hpp"
 #include "harness/core/json.hpp"
 #include "harness/core/params.hpp"
 #include "harness/core/repeat_timing.hpp"
@@ -187,7 +188,7 @@ int command_list(int argc, char** argv) {
     try {
       description = load_experiment(file.string()).description;
     } catch (const InputError& problem) {
-      description = fmt::format("(unreadable: {})", problem.what());
+      description = fmt::format("(unreadable: {})", printable(problem.what()));
     }
     out += fmt::format("  {:<28} {}\n", file.filename().string(), description);
   }
@@ -360,6 +361,11 @@ int command_run_options(int argc, char** argv, const std::string& command_line, 
   const RunOutcome outcome = run_experiment(run);
   if (outcome.worker_rank) return 0;  // rank 0 reports
   if (mpi != nullptr) resume_line = fmt::format("mpirun -np {} {}", mpi->size(), resume_line);
+  if (!outcome.write_error.empty()) {
+    std::fprintf(stderr, "dabench: %s after %lld of %lld trials (whole rows kept); free space, then finish with: %s\n",
+                 printable(outcome.write_error).c_str(), outcome.items_written, outcome.items_total, resume_line.c_str());
+    return 1;
+  }
   if (outcome.interrupted) {
     std::fprintf(stderr, "dabench: interrupted after %lld of %lld trials; finish with: %s\n",
                  outcome.items_written, outcome.items_total, resume_line.c_str());
@@ -386,7 +392,7 @@ int command_run(int argc, char** argv, const std::string& command_line, const st
     if (mpi->rank() != 0) return 0;
     throw;
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "dabench: rank %d: internal error: %s\n", mpi->rank(), error.what());
+    std::fprintf(stderr, "dabench: rank %d: internal error: %s\n", mpi->rank(), printable(error.what()).c_str());
     mpi->abort(1);
   }
 }
@@ -436,10 +442,10 @@ int cli_main(int argc, char** argv) {
     throw InputError(command.empty() ? "missing command (list, solve, run or merge; see dabench --help)"
                                      : fmt::format("unknown command '{}' (list, solve, run or merge; see dabench --help)", command));
   } catch (const InputError& error) {
-    std::fprintf(stderr, "dabench: %s\n", error.what());
+    std::fprintf(stderr, "dabench: %s\n", printable(error.what()).c_str());
     return 2;
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "dabench: internal error: %s\n", error.what());
+    std::fprintf(stderr, "dabench: internal error: %s\n", printable(error.what()).c_str());
     return 1;
   }
 }

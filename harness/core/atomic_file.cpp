@@ -1,6 +1,8 @@
 #include "harness/core/atomic_file.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -12,18 +14,21 @@ namespace dabench {
 void write_file_atomically(const std::string& path, const std::string& contents) {
   const std::string temporary = path + ".tmp";
   std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (file == nullptr) throw InputError(fmt::format("{}: cannot write", path));
+  if (file == nullptr) throw WriteError(fmt::format("{}: cannot write ({})", path, std::strerror(errno)));
   const bool written = std::fwrite(contents.data(), 1, contents.size(), file) == contents.size();
-  const bool closed = std::fclose(file) == 0;
+  int reason = written ? 0 : errno;
+  const bool closed = std::fclose(file) == 0;  // a buffered write may fail only here
+  if (written && !closed) reason = errno;
   std::error_code error;
   if (!written || !closed) {
     std::filesystem::remove(temporary, error);
-    throw InputError(fmt::format("{}: write failed (disk full?)", path));
+    throw WriteError(fmt::format("{}: write failed ({})", path, std::strerror(reason)));
   }
   std::filesystem::rename(temporary, path, error);
   if (error) {
+    const std::string message = error.message();
     std::filesystem::remove(temporary, error);
-    throw InputError(fmt::format("{}: cannot replace file", path));
+    throw WriteError(fmt::format("{}: cannot replace file ({})", path, message));
   }
 }
 

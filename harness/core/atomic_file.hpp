@@ -4,6 +4,7 @@
 
 namespace dabench {
 
-void write_file_atomically(const std::string& path, const std::string& contents);  // throws InputError
+// Throws WriteError (naming the file and the system's reason) and leaves NAME as it was.
+void write_file_atomically(const std::string& path, const std::string& contents);
 
 }  // namespace dabench

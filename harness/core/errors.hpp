@@ -11,4 +11,10 @@ class InputError : public std::runtime_error {
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 
+// A result file could not be written (disk full, I/O error): what was already written stays.
+class WriteError : public InputError {
+ public:
+  explicit WriteError(const std::string& message) : InputError(message) {}
+};
+
 }  // namespace dabench

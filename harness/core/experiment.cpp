@@ -2,13 +2,15 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <utility>
 
 #include <boost/program_options.hpp>
 #include <fmt/format.h>
+
+#include "harness/core/errors.hpp"
+#include "harness/core/input_file.hpp"
 
 namespace dabench {
 
@@ -122,12 +124,7 @@ void check_ini_lines(const std::string& path, const std::string& text) {
 }  // namespace
 
 Experiment load_experiment(const std::string& path) {
-  if (std::filesystem::is_directory(path)) throw InputError(fmt::format("{}: is a folder, not an experiment file", path));
-  std::ifstream file(path);
-  if (!file) throw InputError(fmt::format("{}: cannot read experiment file", path));
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  return parse_experiment(path, buffer.str());
+  return parse_experiment(path, read_input_file(path, "an experiment file", kMaxExperimentBytes));
 }
 
 Experiment parse_experiment(const std::string& path, std::string text) {

@@ -21,6 +21,8 @@ ProgressLine::ProgressLine(long long total, long long already_done, bool enabled
 
 void ProgressLine::update(long long done) {
   if (!enabled_) return;
+  const std::unique_lock<std::mutex> lock(drawing_, std::try_to_lock);
+  if (!lock.owns_lock()) return;  // another thread is drawing this moment
   const auto now = Clock::now();
   if (now - last_draw_ < std::chrono::milliseconds(200) && done < total_) return;
   last_draw_ = now;

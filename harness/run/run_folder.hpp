@@ -18,6 +18,13 @@ struct OpenedTrials {
 // `initial_meta` is written to meta.json before a fresh trials.csv is created.
 OpenedTrials open_trials_file(const RunPlan& plan, bool resume, bool force, const std::string& initial_meta);
 
+// Every file name a run of any kind writes into its folder (RunPlan::output_files of every kind
+// and option). A fresh run (--force, or merge --force) removes those of them its own plan does
+// not write, so that no result file of an earlier experiment stays beside the new run; files
+// dabench never writes (a study's plots and digests) are left where they are.
+const std::vector<std::string>& run_file_names();
+void remove_other_run_files(const RunPlan& plan);  // throws InputError when one cannot be removed
+
 // A per-item file matching trials.csv's `items_done` whole items: created with its header for
 // a fresh run; for a resumed one, trimmed to the rows of those items (the writer writes it
 // before trials.csv, so it never holds fewer items).

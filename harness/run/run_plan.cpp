@@ -83,6 +83,12 @@ std::string RunPlan::trials_header() const {
   return header + "\n";
 }
 
+std::vector<std::string> RunPlan::output_files() const {
+  std::vector<std::string> names = {"trials.csv", "summary.csv", "meta.json"};
+  for (const ItemFile& file : item_files()) names.push_back(file.name);
+  return names;
+}
+
 std::vector<ItemFile> RunPlan::item_files() const {
   const std::string point = point_columns(point_params.front());
   switch (kind) {
@@ -151,6 +157,14 @@ long long RunPlan::global_item(long long local) const {
   if (!shard) return local;
   const long long block = (local / kItemsPerBlock) * shard->count + (shard->index - 1);
   return block * kItemsPerBlock + local % kItemsPerBlock;
+}
+
+long long RunPlan::local_item(long long global) const {
+  if (global < 0 || global >= items()) return -1;
+  if (!shard) return global;
+  const long long block = global / kItemsPerBlock;
+  if (block % shard->count != shard->index - 1) return -1;
+  return (block / shard->count) * kItemsPerBlock + global % kItemsPerBlock;
 }
 
 std::string RunPlan::shard_label() const { return shard ? fmt::format("{}/{}", shard->index, shard->count) : std::string(); }

@@ -52,6 +52,7 @@ struct RunPlan {
   // (0-based, < shard_items()) is the plan's item global_item(local).
   long long shard_items() const;
   long long global_item(long long local) const;
+  long long local_item(long long global) const;  // its inverse; -1 for another shard's item or none
   std::string shard_label() const;  // "K/N", or "" when not sharded
   const std::vector<std::string>& metric_columns() const;  // of trials.csv, by kind
   std::string trials_header() const;
@@ -59,6 +60,8 @@ struct RunPlan {
   // multi-scan: targets.csv; tracking: tracks.csv, measurements.csv and, with
   // `iterations = true`, iterations.csv; track-before-detect: steps.csv, estimates.csv, frames.csv.
   std::vector<ItemFile> item_files() const;
+  // The files a run of this plan writes: trials.csv, summary.csv, meta.json and item_files().
+  std::vector<std::string> output_files() const;
   std::string fingerprint() const;  // identifies the run for --resume
   // The leading fields of every row, precomputed once per run: "point,param values" per point,
   // and the CSV-quoted SPEC per algorithm.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -81,14 +82,17 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
+// Set by the signal handler and by a failing rank's coordinator, read by every thread: a
+// lock-free atomic (safe in a signal handler, and no data race between threads).
+std::atomic<bool> g_interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the interrupt flag must be usable in a signal handler");
+extern "C" void on_interrupt(int) { g_interrupted.store(true, std::memory_order_relaxed); }
 
 // SIGINT/SIGTERM set g_interrupted while this lives (mpirun passes Ctrl-C on as SIGTERM).
 class InterruptHandlers {
  public:
   InterruptHandlers() {
-    g_interrupted = 0;
+    g_interrupted = false;
     previous_int_ = std::signal(SIGINT, on_interrupt);
     previous_term_ = std::signal(SIGTERM, on_interrupt);
   }
@@ -213,6 +217,7 @@ double run_local_blocks(const Execution& execution, const RunPlan& plan, const B
     while (const auto block = queue.take()) {
       run_block(execution, worker, plan, layout, *block);
       const long long blocks_written = writer.submit(*block, std::move(worker.texts));
+      if (writer.failed()) g_interrupted = true;  // the first failed write stops the run
       worker.texts = std::vector<std::string>(files);
       items_finished += layout.end(*block) - layout.begin(*block);
       if (progress != nullptr && (omp_get_thread_num() == 0 || blocks_written == layout.total_blocks())) {
@@ -268,7 +273,7 @@ void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLa
       const long long block = decode_block(answer);
       if (block == kNoBlock) continue;
       BlockResult result;
-      result.interrupted = g_interrupted != 0;
+      result.interrupted = g_interrupted.load();
       if (!result.interrupted) {  // else the block is left to --resume
         run_block(execution, worker, plan, layout, block);
         result.block = block;
@@ -300,11 +305,12 @@ double coordinate(const MpiTransport& mpi, long long remote_threads, BlockQueue&
     }
     idle = IdleWait{};
     BlockResult result = decode_block_result(mpi.receive(*envelope));
-    if (result.interrupted) g_interrupted = 1;  // one rank's Ctrl-C stops the job
+    if (result.interrupted) g_interrupted = true;  // one rank's Ctrl-C stops the job
     busy_seconds[{envelope->source, envelope->tag}] = result.busy_seconds;
     if (result.block != kNoBlock) {
       items_finished += layout.end(result.block) - layout.begin(result.block);
       writer.submit(result.block, std::move(result.texts));
+      if (writer.failed()) g_interrupted = true;
     }
     const auto next = queue.take();
     if (!next) --stops_to_send;
@@ -408,15 +414,6 @@ RunOutcome run_experiment(const RunOptions& options) {
   std::vector<std::FILE*> files;
   try {
     opened = open_trials_file(plan, options.resume, options.force, run_meta_json(plan, record));
-    if (!opened.resumed && !plan.experiment.record_iterations) {
-      // A fresh run without `iterations = true` leaves no iterations.csv of an earlier run.
-      std::error_code ignored;
-      std::filesystem::remove(std::filesystem::path(plan.output) / "iterations.csv", ignored);
-    }
-    if (!opened.resumed && !plan.experiment.record_beliefs) {
-      std::error_code ignored;
-      std::filesystem::remove(std::filesystem::path(plan.output) / "beliefs.csv", ignored);
-    }
     for (const ItemFile& file : plan.item_files()) files.push_back(open_item_file(plan, file, opened.items_done, opened.resumed));
   } catch (const InputError& open_error) {
     if (mpi == nullptr) throw;
@@ -454,7 +451,7 @@ RunOutcome run_experiment(const RunOptions& options) {
     try {
       remote_busy = coordinate(*mpi, remote_threads, queue, layout, writer, items_finished, progress, local_done);
     } catch (...) {
-      g_interrupted = 1;
+      g_interrupted = true;
       local.join();
       throw;
     }
@@ -464,23 +461,41 @@ RunOutcome run_experiment(const RunOptions& options) {
   progress.finish();
   const double wall_seconds = std::chrono::duration<double>(Clock::now() - wall_start).count();
   for (std::FILE* file : files) std::fclose(file);
-  if (writer.failed()) throw InputError(fmt::format("{}: write failed (disk full?)", plan.output));
 
   RunOutcome outcome;
+  if (const auto failure = writer.failure()) {
+    std::vector<std::string> names;  // the writer's files: the item files, then trials.csv
+    for (const ItemFile& file : plan.item_files()) names.push_back(file.name);
+    names.push_back("trials.csv");
+    const std::string path = (std::filesystem::path(plan.output) / names.at(failure->file)).string();
+    outcome.write_error = fmt::format("{}: write failed ({})", path, std::strerror(failure->error));
+  }
   outcome.items_total = total_items;
   outcome.items_written = std::min(total_items, writer.next_block() * kItemsPerBlock);
   outcome.interrupted = outcome.items_written < total_items;
   outcome.output = plan.output;
   for (const ItemFile& file : plan.item_files()) outcome.item_files.push_back(file.name);
-  if (!outcome.interrupted) write_summary(trials_path(plan), summary_path(plan), plan.metric_columns());
-  record.status = outcome.interrupted ? "interrupted" : "complete";
+  // A failed write of summary.csv or meta.json at the end is reported as a failed row write
+  // is: every row stays, and --resume (with space freed) writes them again.
+  const auto keep_first_write_error = [&outcome](const auto& write) {
+    try {
+      write();
+    } catch (const WriteError& failed) {
+      if (outcome.write_error.empty()) outcome.write_error = failed.what();
+    }
+  };
+  if (!outcome.interrupted) {
+    keep_first_write_error([&] { write_summary(trials_path(plan), summary_path(plan), plan.metric_columns()); });
+  }
+  record.status = outcome.interrupted || !outcome.write_error.empty() ? "interrupted" : "complete";
   record.items_done = outcome.items_written;
   record.end_time = utc_now();
   record.wall_seconds = wall_seconds;
   const double threads = std::accumulate(record.rank_threads.begin(), record.rank_threads.end(), 0.0);
   record.work_fraction =
       wall_seconds > 0.0 ? busy_seconds / (wall_seconds * (mpi != nullptr ? threads : plan.threads)) : std::nan("");
-  write_file_atomically(meta_path(plan), run_meta_json(plan, record));
+  // Left as it was, meta.json still holds the fingerprint and shard --resume checks.
+  keep_first_write_error([&] { write_file_atomically(meta_path(plan), run_meta_json(plan, record)); });
   return outcome;
 }
 

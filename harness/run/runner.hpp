@@ -50,6 +50,9 @@ struct RunOutcome {
   std::vector<std::string> item_files;  // written beside trials.csv (e.g. targets.csv)
   std::string output;
   bool worker_rank = false;             // an MPI rank other than 0: rank 0 reports the run
+  // Set when a write failed (disk full, I/O error): "FILE: write failed (reason)". The run then
+  // stopped there, its files hold whole rows of the items before, and --resume finishes it.
+  std::string write_error;
 };
 
 // Throws InputError for anything wrong before the run starts.

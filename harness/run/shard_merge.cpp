@@ -2,18 +2,21 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
-#include <sstream>
 
 #include <fmt/format.h>
 
 #include "harness/core/atomic_file.hpp"
 #include "harness/core/csv.hpp"
 #include "harness/core/errors.hpp"
+#include "harness/core/input_file.hpp"
 #include "harness/core/json.hpp"
 #include "harness/core/params.hpp"
 #include "harness/core/summary.hpp"
@@ -26,13 +29,6 @@ namespace dabench {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
 
 // A shard folder as its meta.json describes it.
 struct ShardFolder {
@@ -54,8 +50,8 @@ struct ShardFolder {
 
 ShardFolder read_shard(const std::string& path) {
   const fs::path meta = fs::path(path) / "meta.json";
-  if (!fs::is_regular_file(meta)) throw InputError(fmt::format("{}: no meta.json (not a run folder)", path));
-  ShardFolder folder{path, read_all(meta), "", 0, 0};
+  if (!fs::exists(meta)) throw InputError(fmt::format("{}: no meta.json (not a run folder)", path));
+  ShardFolder folder{path, read_input_file(meta.string(), "a shard's meta.json", kMaxMetaBytes), "", 0, 0};
   const auto label = json_value(folder.meta, "shard");
   if (!label) throw InputError(fmt::format("{}: not a shard (its run had no --shard K/N)", path));
   folder.label = *label;
@@ -148,7 +144,8 @@ RunPlan rebuild_plan(const ShardFolder& shard, const std::string& output) {
 // One shard's file, read row by row with each row's item (point · trials + trial).
 class ShardRows {
  public:
-  ShardRows(const RunPlan& plan, const fs::path& path, const std::string& header) : plan_(plan), path_(path.string()), in_(path) {
+  ShardRows(const RunPlan& plan, const fs::path& path, const std::string& header)
+      : plan_(plan), path_(path.string()), in_(checked(path)) {
     std::string first;
     if (!in_ || !std::getline(in_, first) || first + "\n" != header) {
       throw InputError(fmt::format("{}: missing, or its header differs from the plan's", path_));
@@ -157,6 +154,11 @@ class ShardRows {
     advance();
   }
   bool has_row() const { return has_row_; }
+  // A shard's file is a regular file (its size is the run's: not bounded here).
+  static const fs::path& checked(const fs::path& path) {
+    check_input_file(path.string(), "a shard's result file", std::numeric_limits<std::uintmax_t>::max());
+    return path;
+  }
   long long item() const { return item_; }
   const std::string& row() const { return row_; }
   void advance() {
@@ -193,12 +195,16 @@ void merge_file(const RunPlan& plan, const std::vector<ShardFolder>& shards, con
   readers.reserve(shards.size());
   for (const ShardFolder& shard : shards) readers.emplace_back(plan, fs::path(shard.path) / name, header);
   std::FILE* out = std::fopen(target.c_str(), "wb");
-  if (out == nullptr) throw InputError(fmt::format("{}: cannot open for writing", target.string()));
-  bool written = std::fputs(header.c_str(), out) >= 0;
+  if (out == nullptr) throw WriteError(fmt::format("{}: cannot open for writing ({})", target.string(), std::strerror(errno)));
+  int reason = 0;  // errno of the first failed write; nothing more is written after it
+  const auto put = [&](const char* text) {
+    if (reason == 0 && std::fputs(text, out) < 0) reason = errno != 0 ? errno : EIO;
+  };
+  put(header.c_str());
   const auto shard_count = static_cast<long long>(shards.size());
   const long long blocks = (plan.items() + kItemsPerBlock - 1) / kItemsPerBlock;
   try {
-    for (long long block = 0; block < blocks && written; ++block) {
+    for (long long block = 0; block < blocks && reason == 0; ++block) {
       const auto s = static_cast<std::size_t>(block % shard_count);
       ShardRows& reader = readers[s];
       const long long begin = block * kItemsPerBlock, end = std::min(plan.items(), begin + kItemsPerBlock);
@@ -211,7 +217,8 @@ void merge_file(const RunPlan& plan, const std::vector<ShardFolder>& shards, con
         }
         last = reader.item();
         ++rows[static_cast<std::size_t>(reader.item() - begin)];
-        written = written && std::fputs(reader.row().c_str(), out) >= 0 && std::fputc('\n', out) != EOF;
+        put(reader.row().c_str());
+        put("\n");
         reader.advance();
       }
       for (long long item = begin; item < end && rows_per_item > 0; ++item) {
@@ -232,7 +239,8 @@ void merge_file(const RunPlan& plan, const std::vector<ShardFolder>& shards, con
     std::fclose(out);
     throw;
   }
-  if (std::fclose(out) != 0 || !written) throw InputError(fmt::format("{}: write failed (disk full?)", target.string()));
+  if (std::fclose(out) != 0 && reason == 0) reason = errno;  // a buffered write may fail only here
+  if (reason != 0) throw WriteError(fmt::format("{}: write failed ({})", target.string(), std::strerror(reason)));
 }
 
 // meta.json's process fields of the merged run, from the shards'.
@@ -296,6 +304,12 @@ MergeOutcome merge_shards(const MergeOptions& options) {
   } catch (...) {
     for (const fs::path& temporary : temporaries) fs::remove(temporary, error);
     if (created) fs::remove(options.output, error);
+    throw;
+  }
+  try {
+    remove_other_run_files(plan);
+  } catch (...) {
+    for (const fs::path& temporary : temporaries) fs::remove(temporary, error);
     throw;
   }
   fs::remove(meta_path(plan), error);

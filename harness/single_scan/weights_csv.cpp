@@ -9,12 +9,13 @@
 #include <fmt/format.h>
 
 #include "harness/core/errors.hpp"
+#include "harness/core/input_file.hpp"
 #include "harness/core/params.hpp"
 
 namespace dabench {
 
 SingleScanProblem read_weights_csv(const std::string& path) {
-  if (std::filesystem::is_directory(path)) throw InputError(fmt::format("{}: is a folder, not a weights file", path));
+  check_input_file(path, "a weights file", kMaxWeightsBytes);
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("{}: cannot read weights file", path));
   std::vector<double> values;

@@ -15,6 +15,7 @@
 //  - `--version` and every command's `--help`/`-h` print on stdout and exit 0.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -276,6 +277,15 @@ TEST_CASE("cli solve: malformed weights files are rejected naming file and line"
   SECTION("missing file") {
     expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "missing.csv"}, {"missing.csv"});
   }
+  SECTION("a character device is refused at once, not read forever") {
+    expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "/dev/zero"}, {"/dev/zero", "not a regular file"});
+  }
+  SECTION("binary content is quoted escaped") {
+    dir.write("binary.csv", std::string("1,2\n3,\x1b[2J\x01\xff\n", 13));
+    const std::string err = expect_error(dir, {"solve", "--algorithm", "bp", "--weights", "binary.csv"}, {"binary.csv:2"});
+    CHECK(contains(err, "\\x1B[2J\\x01\\xFF"));
+    CHECK(std::none_of(err.begin(), err.end() - 1, [](char c) { return static_cast<unsigned char>(c) < 0x20; }));
+  }
 }
 
 TEST_CASE("cli solve: bad algorithm specs and options are rejected", "[cli][solve]") {
@@ -507,6 +517,14 @@ TEST_CASE("cli run: bad experiment files are rejected before any output", "[cli]
   SECTION("experiment path is a folder") {
     std::filesystem::create_directories(dir.work() / "folder.ini");
     expect_error(dir, {"run", "folder.ini"}, {"folder.ini"});
+  }
+  SECTION("experiment path is a device") {
+    expect_error(dir, {"run", "/dev/full"}, {"/dev/full", "not a regular file"});
+    expect_error(dir, {"run", "/dev/zero"}, {"/dev/zero", "not a regular file"});
+  }
+  SECTION("experiment file too large") {
+    dir.write("huge.ini", std::string((1u << 20) + 1, '#'));
+    expect_error(dir, {"run", "huge.ini"}, {"huge.ini", "at most 1048576 bytes"});
   }
   SECTION("malformed INI line") {
     dir.write("e.ini", experiment_with("this line has no equals sign\n"));

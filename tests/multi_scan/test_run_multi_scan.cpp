@@ -153,6 +153,23 @@ TEST_CASE("run multi-scan: --resume after a hard kill finishes identically", "[r
       CHECK(dir.read("K/targets.csv") == targets);
     }
   }
+  SECTION("--resume refuses targets.csv rows out of item order") {
+    // Items 1 and 2's rows exchanged: each row is whole, but not in the plan's order.
+    const std::string swapped = targets.substr(0, item_offset(targets, 1)) +
+                                targets.substr(item_offset(targets, 2), item_offset(targets, 3) - item_offset(targets, 2)) +
+                                targets.substr(item_offset(targets, 1), item_offset(targets, 2) - item_offset(targets, 1)) +
+                                targets.substr(item_offset(targets, 3), item_offset(targets, 8) - item_offset(targets, 3));
+    write_text(dir.work() / "K" / "trials.csv", trials.substr(0, item_offset(trials, 5)));
+    REQUIRE(swapped != targets.substr(0, swapped.size()));
+    write_text(dir.work() / "K" / "targets.csv", swapped);
+    write_text(dir.work() / "K" / "meta.json", meta);
+    const CliResult result = run_dabench(dir, {"run", "tiny.ini", "--threads", "2", "--out", "K", "--resume"});
+    INFO(result.err);
+    CHECK(result.status == 2);
+    CHECK(contains(result.err, "targets.csv: the row at byte"));
+    CHECK(contains(result.err, "cannot resume (use --force to start over)"));
+    CHECK(dir.read("K/targets.csv") == swapped);
+  }
   SECTION("--resume on a finished run changes nothing") {
     run_ok(dir, {"run", "tiny.ini", "--threads", "1", "--out", "A", "--resume"});
     CHECK(dir.read("A/targets.csv") == targets);

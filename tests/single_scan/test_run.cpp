@@ -449,6 +449,44 @@ TEST_CASE("run: --resume after a hard kill at any byte offset finishes identical
   }
 }
 
+// --resume keeps rows only when they are, row by row, the plan's items in order with one row
+// per SPEC; anything else (rows reordered, another run's rows pasted in, more items than the
+// run has) is refused with one line, and the folder is left as it was.
+TEST_CASE("run: --resume refuses kept rows that are not the plan's items", "[run][resume]") {
+  TempDir dir;
+  dir.write("tiny.ini", kTiny);
+  run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "A"});
+  const auto lines = split_lines(dir.read("A/trials.csv"));
+  const std::string meta = dir.read("A/meta.json");
+  const std::size_t specs = kTinySpecs.size();
+  // The header and rows [0, rows) of the run, row a read from row b and row b from row a.
+  const auto text = [&](std::size_t rows, std::size_t a, std::size_t b) {
+    std::string joined = lines[0] + "\n";
+    for (std::size_t r = 0; r < rows; ++r) joined += lines[1 + (r == a ? b : r == b ? a : r)] + "\n";
+    return joined;
+  };
+  const std::string first_item_again = text(specs, 0, 0).substr(lines[0].size() + 1);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"two items exchanged", text(10 * specs, 1, specs + 1)},
+      {"two algorithms of an item exchanged", text(10 * specs, 2, 3)},
+      {"a row of the second point in place of the third item's first", text(10 * specs, 2 * specs, 45 * specs)},
+      {"more items than the run has", text(lines.size() - 1, 0, 0) + first_item_again},
+  };
+  for (const auto& [what, trials] : cases) {
+    DYNAMIC_SECTION(what) {
+      write_text(dir.work() / "K" / "trials.csv", trials);
+      write_text(dir.work() / "K" / "meta.json", meta);
+      const CliResult result = run_dabench(dir, {"run", "tiny.ini", "--threads", "2", "--out", "K", "--resume"});
+      INFO(result.err);
+      CHECK(result.status == 2);
+      CHECK(contains(result.err, "cannot resume (use --force to start over)"));
+      CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
+      CHECK(dir.read("K/trials.csv") == trials);
+      CHECK_FALSE(dir.exists("K/summary.csv"));
+    }
+  }
+}
+
 // A cut inside the header line (the header is written before the first row, so only a crash in
 // the first moments of a run can leave one) makes --resume refuse instead of starting over.
 TEST_CASE("run: --resume after a hard kill inside the header line", "[run][resume]") {
