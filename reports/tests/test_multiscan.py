@@ -95,14 +95,14 @@ class CopyOfTheData(unittest.TestCase):
         self.assertEqual(self.verdict(self.render(), "P4"), "differs")
 
     def test_one_changed_hpd_value_breaks_o2(self):
-        """O2 compares the random-corner reading's 10 000-particle point with Fig. 4 value by value."""
+        """O2 compares the default (corner) reading's 10 000-particle point with Fig. 4 value by value."""
         self.assertEqual(self.verdict(self.render(), "O2"), "agrees")
         first = {}
 
         def one_value(row):
             if row["point"] == "0" and row["algorithm"] == "cv" and not first:
                 first["done"] = row["hpd"] = repr(float(row["hpd"]) + 1e-12)
-        rewrite_csv(self.data("reading-random", "targets.csv"), one_value)
+        rewrite_csv(self.data("reading-corner", "targets.csv"), one_value)
         self.assertEqual(self.verdict(self.render(), "O2"), "differs")
 
     def test_algorithm2_cost_is_reported_once_committed(self):

@@ -14,10 +14,11 @@
 //  - Track initialisation: one sensor measures the target's bearing with N(0, init_noise_deg²)
 //    noise; the track's particles represent the posterior π0(x) ∝ 1{x in region}·N(φ(x); φ_m,
 //    σ0²) (uniform prior × that bearing). Which sensor is a reading [R] (`init_sensor`): the
-//    paper initialises tracks "from one sensor … from a single location"; `random` (default)
-//    draws a corner uniformly per target, `corner` takes init_corner for every target (the
-//    uniform is drawn either way, so the two readings share the draws up to the first target
-//    whose corner differs; its particles then take other numbers), `site` takes the point
+//    paper initialises tracks "from one sensor … from a single location"; `corner` (default:
+//    one site, the wording's most direct reading) takes init_corner for every target, `random`
+//    draws a corner uniformly per target (the uniform is drawn either way, so the
+//    two readings share the draws up to the first target whose corner differs; its particles
+//    then take other numbers), `site` takes the point
 //    (init_site_x, init_site_y) outside the open region for every target: a separate accurate
 //    sensor that does not scan (the paper's four corner sensors make "four scans in total"; at a
 //    corner, `site` is `corner`, since that corner's sensor scans either way).
@@ -86,7 +87,7 @@ struct BearingsOptions {
   double noise_deg = 1.0;       // bearing noise s.d. of the scans, degrees (paper: 1)
   double init_noise_deg = 0.1;  // s.d. of the initialising bearing, degrees (paper: 0.1)
   int scans_per_sensor = 1;     // rounds of the four sensors: 1 → 4 scans, 3 → 12 (paper: 1, 3)
-  int init_sensor = 0;          // random: each target from a corner drawn uniformly; corner: all from init_corner [R]
+  int init_sensor = 1;          // corner: all from init_corner; random: each from a corner drawn uniformly [R]
   int init_corner = 0;          // init_sensor = corner: its index, 0..3 (counter-clockwise from (−100, −100))
   double init_site_x = -100.0;  // init_sensor = site: its position, outside the open region (default:
   double init_site_y = -100.0;  //   corner 0, where site draws what corner draws)

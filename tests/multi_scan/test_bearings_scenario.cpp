@@ -184,7 +184,7 @@ TEST_CASE("bearings: invalid parameters are refused with the field named", "[bea
 
 TEST_CASE("bearings: init_sensor = corner initialises every track from init_corner",
           "[bearings]") {
-  const BearingsScenario random(options_from({{"particles", "40"}, {"scans_per_sensor", "3"}}));
+  const BearingsScenario random(options_from({{"particles", "40"}, {"scans_per_sensor", "3"}, {"init_sensor", "random"}}));
   for (const int corner : {0, 2, 3}) {
     INFO("init_corner " << corner);
     const BearingsScenario fixed(options_from({{"particles", "40"}, {"scans_per_sensor", "3"}, {"init_sensor", "corner"},
