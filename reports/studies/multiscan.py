@@ -552,7 +552,11 @@ def figure_readings(report, figures):
         report.value(f"{name}.targets", str(len(figure.targets.trial)))
         report.value(f"{name}.trials", str(figure.trials()))
         if "jpda-bp" in figure.methods:
-            report.value(f"{name}.jpda_side", side_of_calibration(figure, "jpda-bp"))
+            side = side_of_calibration(figure, "jpda-bp")
+            report.value(f"{name}.jpda_side", side)
+            report.value(f"{name}.jpda_reading", {  # what that side says of the paper's "non-conservative"
+                "non-conservative": "as the paper says", "conservative": "against the paper's statement beyond error"}.get(
+                side, "so the data neither confirm the paper's statement nor contradict it beyond error"))
 
 
 # ----------------------------------------------------------------------------- readings and particle counts
