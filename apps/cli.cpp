@@ -27,6 +27,7 @@
 #include "harness/run/mpi_transport.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/run/shard_merge.hpp"
+#include "harness/run/shard_meta.hpp"
 #include "harness/single_scan/registry.hpp"
 #include "harness/single_scan/weights_csv.hpp"
 #include "harness/tbd/registry.hpp"
@@ -271,6 +272,7 @@ int command_solve(int argc, char** argv) {
   MarginalTable marginals;
   SolveReport report;
   solver->solve(problem, marginals, report);
+  reject_non_distribution(problem, marginals, report);
   if (!report.skipped.empty()) {
     std::fprintf(stderr, "dabench: %s: skipped:%s (the algorithm refused this problem)\n", spec.c_str(), report.skipped.c_str());
     return 3;
@@ -308,15 +310,10 @@ int command_solve(int argc, char** argv) {
   return 0;
 }
 
-// "K/N" with 1 <= K <= N.
 Shard parse_shard(const std::string& text) {
-  const auto slash = text.find('/');
-  std::int64_t index = 0, count = 0;
-  if (slash == std::string::npos || !parse_int64(text.substr(0, slash), index) ||
-      !parse_int64(text.substr(slash + 1), count) || count < 1 || count > 1000000 || index < 1 || index > count) {
-    throw InputError(fmt::format("run: --shard '{}' must be K/N with 1 <= K <= N <= 1000000", text));
-  }
-  return Shard{static_cast<int>(index), static_cast<int>(count)};
+  const auto shard = parse_shard_label(text);
+  if (!shard) throw InputError(fmt::format("run: --shard '{}' must be K/N with 1 <= K <= N <= {}", text, kMaxShards));
+  return *shard;
 }
 
 int command_run_options(int argc, char** argv, const std::string& command_line, std::string resume_line,

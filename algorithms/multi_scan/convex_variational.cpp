@@ -1,4 +1,5 @@
 #include "algorithms/multi_scan/convex_variational.hpp"
+#include "harness/core/special_values.hpp"
 
 #include <algorithm>
 #include <cfloat>
@@ -9,7 +10,6 @@ namespace dabench {
 
 namespace {
 
-constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 constexpr double kWeightFloor = -600.0;  // log of the smallest relative weight given to Algorithm 1
 constexpr double kShiftLimit = 100.0;    // largest |log| of a row maximum or clutter weight given to it
 const double kLogProbabilityFloor = std::log(DBL_MIN);

@@ -6,11 +6,13 @@
 #include <limits>
 #include <numbers>
 
+#include "harness/core/special_values.hpp"
+#include "harness/core/target_clones.hpp"
+
 namespace dabench {
 
 namespace {
 
-constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 // Hypotheses with q(A) below this (normalised) are left out of the Newton matrix's cross-scan sums.
 constexpr double kMatrixMassFloor = 1e-8;
 // Association probabilities p_t(j | A) below this are left out of the cross-scan sums (an
@@ -53,10 +55,10 @@ void log_sums_without(const Vector& x, Vector& out, Vector& tail) {
 constexpr Eigen::Index kBlock = 512;
 
 // s(A) = Σ_c F(A, c) w(c) into `evidence`, and product(A) *= scale · s(A); returns the largest product.
-__attribute__((target_clones("avx2", "default"))) double evidence_pass(const double* __restrict table, Eigen::Index rows,
-                                                                       int columns, const double* __restrict weight,
-                                                                       double scale, double* __restrict evidence,
-                                                                       double* __restrict product) {
+DABENCH_AVX2_CLONES double evidence_pass(const double* __restrict table, Eigen::Index rows,
+                                        int columns, const double* __restrict weight,
+                                        double scale, double* __restrict evidence,
+                                        double* __restrict product) {
   double top = 0.0;
   for (Eigen::Index start = 0; start < rows; start += kBlock) {
     const Eigen::Index end = std::min(rows, start + kBlock);
@@ -77,10 +79,10 @@ __attribute__((target_clones("avx2", "default"))) double evidence_pass(const dou
 
 // U(c) = Σ_A F(A, c) product(A) / s(A) (terms with s = 0 are 0), with eight partial sums per
 // column (`partial`: columns × 8 workspace) in a fixed order for any vector width.
-__attribute__((target_clones("avx2", "default"))) void marginal_pass(const double* __restrict table, Eigen::Index rows,
-                                                                     int columns, const double* __restrict evidence,
-                                                                     const double* __restrict product,
-                                                                     double* __restrict partial, double* __restrict out) {
+DABENCH_AVX2_CLONES void marginal_pass(const double* __restrict table, Eigen::Index rows,
+                                      int columns, const double* __restrict evidence,
+                                      const double* __restrict product,
+                                      double* __restrict partial, double* __restrict out) {
   double ratio[kBlock];
   for (int k = 0; k < columns * 8; ++k) partial[k] = 0.0;
   for (Eigen::Index start = 0; start < rows; start += kBlock) {
@@ -106,9 +108,9 @@ __attribute__((target_clones("avx2", "default"))) void marginal_pass(const doubl
 }
 
 // U(c) = Σ_A F(A, c) w(A), eight partial sums per column (`partial`: columns × 8 workspace).
-__attribute__((target_clones("avx2", "default"))) void column_sums(const double* __restrict table, Eigen::Index rows,
-                                                                   int columns, const double* __restrict weight,
-                                                                   double* __restrict partial, double* __restrict out) {
+DABENCH_AVX2_CLONES void column_sums(const double* __restrict table, Eigen::Index rows,
+                                    int columns, const double* __restrict weight,
+                                    double* __restrict partial, double* __restrict out) {
   for (int k = 0; k < columns * 8; ++k) partial[k] = 0.0;
   const Eigen::Index whole = rows - rows % 8;
   for (int c = 0; c < columns; ++c) {

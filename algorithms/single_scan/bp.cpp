@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "harness/core/grow_buffer.hpp"
+#include "harness/core/target_clones.hpp"
 #include "harness/single_scan/registry.hpp"
 
 namespace dabench {
@@ -23,7 +24,7 @@ namespace {
 // One BP iteration over the shared edges. The flat loops with indexed loads vectorise (AVX2
 // gathers where the CPU has them: one clone per ISA, chosen at load time); the arithmetic and
 // its order are the same in every clone, so results are bit-identical on every machine.
-__attribute__((target_clones("avx2", "default"))) void bp_iteration(
+DABENCH_AVX2_CLONES void bp_iteration(
     int active, int edges, int columns, const int* __restrict active_begin, const double* __restrict base,
     const double* __restrict psi, const int* __restrict row, const int* __restrict column,
     double* __restrict row_sum, double* __restrict column_sum, double* __restrict mu, double* __restrict nu) {
@@ -45,7 +46,7 @@ __attribute__((target_clones("avx2", "default"))) void bp_iteration(
 // every loop is a plain vector loop, with no index loads. Zeros change nothing: ψ = 0 gives
 // μ = 0, and adding 0 leaves every sum bit-identical to the sparse loop, whose order (row
 // sums by measurement, column sums by target) is kept.
-__attribute__((target_clones("avx2", "default"))) void bp_iteration_dense(
+DABENCH_AVX2_CLONES void bp_iteration_dense(
     int active, int stride, const double* __restrict base, const double* __restrict psi,
     double* __restrict product, double* __restrict column_sum, double* __restrict mu, double* __restrict nu) {
   constexpr int kLanes = 4;  // stride is a multiple of this: the inner loops are single vector ops
@@ -70,6 +71,56 @@ __attribute__((target_clones("avx2", "default"))) void bp_iteration_dense(
     for (int c = 0; c < stride; c += kLanes) {
       for (int k = c; k < c + kLanes; ++k) nu[a * stride + k] = 1.0 / (column_sum[k] - mu[a * stride + k]);
     }
+  }
+}
+
+// Eqs (20)-(21) divide by a sum minus one of its terms, s − t. Only the sum's largest term can
+// cancel (any other t has s − t ≥ s/2), and s − t ≥ 1 (the missed detection's or the unassigned
+// measurement's 1), so more than 16 bits can be lost only where s > 2^16: with ψ ~ 1e20 the
+// plain form gives μ = ψ / 0. Problems whose sums can reach that run this iteration, which
+// recomputes the largest term's message from the sum of the others, accumulated separately,
+// wherever s − t < 2^-16 s, and is otherwise the plain iteration's arithmetic, bit for bit.
+constexpr double kCancelling = 0x1p-16;
+
+void bp_iteration_guarded(int active, int edges, int columns, const int* active_begin, const double* base,
+                          const double* psi, const int* column, double* row_sum, double* column_sum, double* column_top,
+                          int* column_top_edge, double* mu, double* nu) {
+  for (int a = 0; a < active; ++a) {
+    double s = base[a], top = -1.0;
+    int top_edge = -1;
+    for (int e = active_begin[a]; e < active_begin[a + 1]; ++e) {
+      const double t = psi[e] * nu[e];
+      s += t;
+      if (t > top) top = t, top_edge = e;
+    }
+    row_sum[a] = s;
+    for (int e = active_begin[a]; e < active_begin[a + 1]; ++e) mu[e] = psi[e] / (s - psi[e] * nu[e]);
+    if (s - top < kCancelling * s) {
+      double rest = base[a];
+      for (int e = active_begin[a]; e < active_begin[a + 1]; ++e) rest += e == top_edge ? 0.0 : psi[e] * nu[e];
+      mu[top_edge] = psi[top_edge] / rest;
+    }
+  }
+  for (int c = 0; c < columns; ++c) column_sum[c] = 1.0, column_top[c] = -1.0;
+  for (int e = 0; e < edges; ++e) {
+    const int c = column[e];
+    column_sum[c] += mu[e];
+    if (mu[e] > column_top[c]) column_top[c] = mu[e], column_top_edge[c] = e;
+  }
+  for (int e = 0; e < edges; ++e) nu[e] = 1.0 / (column_sum[column[e]] - mu[e]);
+  bool cancelling = false;  // column_top becomes the other terms' sum where the column cancels, else −1
+  for (int c = 0; c < columns; ++c) {
+    const bool here = column_sum[c] - column_top[c] < kCancelling * column_sum[c];
+    column_top[c] = here ? 1.0 : -1.0;
+    cancelling |= here;
+  }
+  if (!cancelling) return;
+  for (int e = 0; e < edges; ++e) {
+    const int c = column[e];
+    if (column_top[c] > 0.0 && e != column_top_edge[c]) column_top[c] += mu[e];
+  }
+  for (int c = 0; c < columns; ++c) {
+    if (column_top[c] > 0.0) nu[column_top_edge[c]] = 1.0 / column_top[c];
   }
 }
 
@@ -139,7 +190,19 @@ double BeliefPropagation::build_edges(const SingleScanProblem& problem) {
   }
   edges_ = edges;
   active_ = active;
-  dense_ = edges > 0 && active * stride_ <= options_.dense_cells && active * stride_ <= 4 * edges;
+  // Can a row sum 1 + Σ ψν or a column sum 1 + Σ μ reach 2^16 (ν ≤ 1 and μ ≤ ψ, since the sums
+  // less a term are ≥ 1)? Then the guarded iteration runs (see bp_iteration_guarded).
+  double largest_sum = 0.0;
+  std::fill_n(column_top_, shared_columns, 0.0);  // here: Σ_i ψ_ij per shared measurement
+  for (int a = 0; a < active; ++a) {
+    double sum = 0.0;
+    for (int e = active_begin_[a]; e < active_begin_[a + 1]; ++e) sum += psi_[e], column_top_[column_[e]] += psi_[e];
+    largest_sum = std::max(largest_sum, sum);
+  }
+  for (int c = 0; c < shared_columns; ++c) largest_sum = std::max(largest_sum, column_top_[c]);
+  guarded_ = !(largest_sum + 1.0 < 0x1p16);  // NaN-safe: ψ = inf runs guarded too
+  if (guarded_) grow_buffer(column_top_edge_, shared_columns);
+  dense_ = !guarded_ && edges > 0 && active * stride_ <= options_.dense_cells && active * stride_ <= 4 * edges;
   cells_ = dense_ ? active * stride_ : edges;
   if (dense_) {
     grow_buffer(edge_cell_, edges);
@@ -162,7 +225,7 @@ void BeliefPropagation::carve_arena(int n, int m) {
   const std::size_t pairs = lines(static_cast<std::size_t>(n) * m);
   const std::size_t cells = std::max(pairs, lines(static_cast<std::size_t>(n) * stride_));
   const std::size_t columns = lines(static_cast<std::size_t>(std::max(m, stride_)));
-  const std::size_t total = 2 * targets + pairs + 5 * cells + columns;
+  const std::size_t total = 2 * targets + pairs + 5 * cells + 2 * columns;
   if (arena_.size() < total) arena_.resize(total);
   double* next = arena_.data();
   const auto take = [&next](std::size_t count) { return std::exchange(next, next + count); };
@@ -175,9 +238,15 @@ void BeliefPropagation::carve_arena(int n, int m) {
   nu_ = take(cells);
   nu_previous_ = take(cells);
   column_sum_ = take(columns);
+  column_top_ = take(columns);
 }
 
 void BeliefPropagation::iterate_once() {
+  if (guarded_) {
+    bp_iteration_guarded(active_, edges_, columns_, active_begin_.data(), base_, psi_, column_.data(), row_sum_,
+                         column_sum_, column_top_, column_top_edge_.data(), mu_, nu_);
+    return;
+  }
   if (dense_) {
     bp_iteration_dense(active_, stride_, base_, block_psi_, block_product_, column_sum_, mu_, nu_);
     return;

@@ -16,7 +16,9 @@
 // per-target constant and the loop runs over shared measurements only; zero weights stay
 // exactly zero and cost nothing. When the remaining targets × shared measurements block is
 // small and at least a quarter full, the iteration runs on that dense block instead (plain
-// vector loops beat indexed ones there); both paths give bit-identical results.
+// vector loops beat indexed ones there); both paths give bit-identical results. Where weights
+// make a row or column sum reach 2^16, a guarded iteration keeps eqs (20)-(21) free of
+// cancellation (the plain s − ψν is 0 for ψ ~ 1e20); it is bit-identical wherever none occurs.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -64,6 +66,7 @@ class BeliefPropagation final : public SingleScanSolver {
   Options options_;
   double w_star_ = 0.0;
   bool dense_ = false;               // iterate on the dense block (else on the edge lists)
+  bool guarded_ = false;             // sums can reach 2^16: the cancellation-guarded iteration
   int stride_ = 0;                   // dense row stride: shared measurements rounded up to 4
   int edges_ = 0;                    // shared edges of the current problem
   int active_ = 0;                   // targets with a shared edge
@@ -83,6 +86,7 @@ class BeliefPropagation final : public SingleScanSolver {
   std::vector<int> column_;          // shared-measurement index of each shared edge
   std::vector<int> measurement_;     // measurement of each shared edge
   std::vector<int> edge_cell_;       // dense mode: block cell of each shared edge
+  std::vector<int> column_top_edge_; // guarded mode: the edge of each column's largest μ
   // The arrays the iteration touches, carved from one cache-aligned arena (it only grows) at
   // offsets fixed by the problem size, so their placement is the same on every solve.
   CacheAlignedVector<double> arena_;
@@ -95,6 +99,7 @@ class BeliefPropagation final : public SingleScanSolver {
   double* nu_previous_ = nullptr;    // ν̃ of Fig. 3
   double* row_sum_ = nullptr;        // 1 + Σ_j ψ_ij ν_ji per active target
   double* column_sum_ = nullptr;     // 1 + Σ_i μ_ij per shared measurement
+  double* column_top_ = nullptr;     // guarded mode: a column's largest μ, then its other terms' sum
 };
 
 }  // namespace dabench

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <climits>
+#include <cfenv>
 #include <cmath>
+#include <limits>
 
+#include "harness/core/special_values.hpp"
 #include "harness/single_scan/registry.hpp"
 
 namespace dabench {
@@ -18,6 +21,8 @@ std::string EhmOptions::validate() const {
 namespace {
 
 constexpr int kMaxWords = 8;     // key spaces up to 512 shared measurements
+// The most a product below the normal range loses (its error bound: backward_pass).
+constexpr double kSubnormal = std::numeric_limits<double>::denorm_min();
 constexpr int kDirectBits = 22;  // key spaces up to this size use a direct-address index (16 MB)
 
 inline std::uint64_t fmix64(std::uint64_t x) {
@@ -45,7 +50,7 @@ inline bool same_key(const std::uint64_t* a, const std::uint64_t* b) {
 }
 
 inline bool has_bit(const std::uint64_t* key, int bit) { return (key[bit >> 6] >> (bit & 63)) & 1U; }
-inline void set_bit(std::uint64_t* key, int bit) { key[bit >> 6] |= std::uint64_t{1} << (bit & 63); }
+inline void set_key_bit(std::uint64_t* key, int bit) { key[bit >> 6] |= std::uint64_t{1} << (bit & 63); }
 
 }  // namespace
 
@@ -184,13 +189,11 @@ const char* Ehm::solve_cluster(int first, int last, MarginalTable& marginals) {
   build_tree();
   const int bits = build_tables();
   stats_.max_key_bits = std::max(stats_.max_key_bits, bits);
-  bool ok = false;
-  if (bits <= 64) ok = run_net<1>(marginals);
-  else if (bits <= 128) ok = run_net<2>(marginals);
-  else if (bits <= 256) ok = run_net<4>(marginals);
-  else if (bits <= 64 * kMaxWords) ok = run_net<kMaxWords>(marginals);
-  else return "key_width";
-  return ok ? "" : "work_limit";
+  if (bits <= 64) return run_net<1>(marginals);
+  if (bits <= 128) return run_net<2>(marginals);
+  if (bits <= 256) return run_net<4>(marginals);
+  if (bits <= 64 * kMaxWords) return run_net<kMaxWords>(marginals);
+  return "key_width";
 }
 
 // Estimated net size of a target order. After k targets the frontier F_k is the set of shared
@@ -544,14 +547,14 @@ int Ehm::build_tables() {
 // bottom-up, forward_pass computes α top-down and the targets' rows with it.
 
 template <int W>
-bool Ehm::run_net(MarginalTable& marginals) {
-  if (!build_net<W>()) return false;
+const char* Ehm::run_net(MarginalTable& marginals) {
+  if (!build_net<W>()) return "work_limit";
+  std::feclearexcept(FE_UNDERFLOW);  // write_row applies the underflow bound only once it is raised
   // Every layer's factor enters Z exactly once (β_root = Π of the factors below it) when the
   // cluster's tree has one root, which a connected cluster always has.
   stats_.log_partition += backward_pass<W>();
   for (int li = 0; li < cluster_size_; ++li) stats_.log_partition += std::log(row_scale_[li]);
-  forward_pass<W>(marginals);
-  return true;
+  return forward_pass<W>(marginals) ? "" : "numerical";
 }
 
 // The layers and their links, top-down: a root layer holds one node (nothing used yet); the layer
@@ -675,7 +678,7 @@ bool Ehm::build_child_hashed(int p, int ci) {
     for (int w = 0; w < W; ++w) {
       for (std::uint64_t bits = state[w]; bits != 0; bits &= bits - 1) {
         const int to = remap[w * 64 + __builtin_ctzll(bits)];
-        if (to >= 0) set_bit(base, to);
+        if (to >= 0) set_key_bit(base, to);
       }
     }
     for (int ch = 0; ch < choices; ++ch, out += children) {
@@ -685,7 +688,7 @@ bool Ehm::build_child_hashed(int p, int ci) {
         continue;
       }
       std::copy_n(base, W, key);
-      if (sets[ch] >= 0) set_bit(key, sets[ch]);
+      if (sets[ch] >= 0) set_key_bit(key, sets[ch]);
       const std::int32_t id = find_or_insert<W>(key);
       if (id < 0) return false;
       *out = id;
@@ -698,11 +701,23 @@ bool Ehm::build_child_hashed(int p, int ci) {
   return true;
 }
 
+// The weight of a choice is at most this: a gated ψ over the row scale is ≤ 1, the folded
+// choice (the miss and the exclusive measurements) ≤ 1 + their count.
+double Ehm::layer_weight_bound(int p) const {
+  const int cb = choice_begin_[p], ce = choice_begin_[p + 1];
+  return std::max(1.0, *std::max_element(choice_weight_.begin() + cb, choice_weight_.begin() + ce));
+}
+
 // β bottom-up (Method 3), each layer scaled to max 1. Returns Σ over layers of log(max): log Z
 // of the normalised, row-scaled problem.
+// Underflow: stored β's are ≤ 1 and a weight ≤ w̄ (layer_weight_bound), so a term w Π_c β_c whose
+// factors carry errors ε_c is off by at most w̄ Σ_c ε_c plus one smallest subnormal per
+// multiplication; a node sums `choices` terms, and the layer's scale multiplies the bound by
+// 1 / max. beta_error_[p] is that bound for every node of p (infinite where the layer is all 0).
 template <int W>
 double Ehm::backward_pass() {
   beta_.resize(keys_.size() / W);
+  beta_error_.assign(cluster_size_, 0.0);
   double log_scale_sum = 0.0;
   for (int p = cluster_size_ - 1; p >= 0; --p) {
     const std::int64_t first = layer_begin_[2 * p], nodes = layer_begin_[2 * p + 1];
@@ -735,6 +750,10 @@ double Ehm::backward_pass() {
         largest = std::max(largest, sum);
       }
     }
+    double child_error = 0.0;
+    for (int k = child_begin_[p]; k < child_begin_[p + 1]; ++k) child_error += beta_error_[child_list_[k]];
+    const double raw_error = choices * (layer_weight_bound(p) * child_error + (children + 1) * kSubnormal);
+    beta_error_[p] = largest > 0.0 ? raw_error / largest : kInfinity;
     if (largest > 0.0) {
       const double inverse = 1.0 / largest;
       for (std::int64_t s = 0; s < nodes; ++s) beta_[first + s] *= inverse;
@@ -745,8 +764,10 @@ double Ehm::backward_pass() {
 }
 
 // α top-down (Method 3), each child layer scaled to max 1 once complete, and every target's row.
+// α's underflow bound (as β's): a child node gathers at most nodes × choices terms of the parent
+// layer, each α_p w Π_{c' ≠ c} β_c' with α_p ≤ 1.
 template <int W>
-void Ehm::forward_pass(MarginalTable& marginals) {
+bool Ehm::forward_pass(MarginalTable& marginals) {
   const int size = cluster_size_;
   int widest_choices = 1, widest_children = 0;
   for (int p = 0; p < size; ++p) {
@@ -757,23 +778,32 @@ void Ehm::forward_pass(MarginalTable& marginals) {
   child_beta_.resize(widest_children + 1);
   prefix_.resize(widest_children + 1);
   alpha_.assign(keys_.size() / W, 0.0);
+  alpha_error_.assign(size, 0.0);
   for (int p = 0; p < size; ++p) {
     if (parent_[p] < 0) alpha_[layer_begin_[2 * p]] = 1.0;
   }
   for (int p = 0; p < size; ++p) {
     forward_layer<W>(p);
+    const int children = child_begin_[p + 1] - child_begin_[p];
+    const double terms = static_cast<double>(layer_begin_[2 * p + 1]) * (choice_begin_[p + 1] - choice_begin_[p]);
+    double child_error = 0.0;
+    for (int k = child_begin_[p]; k < child_begin_[p + 1]; ++k) child_error += beta_error_[child_list_[k]];
     for (int k = child_begin_[p]; k < child_begin_[p + 1]; ++k) {
       const int c = child_list_[k];
       const std::int64_t cf = layer_begin_[2 * c], cn = layer_begin_[2 * c + 1];
       double largest = 0.0;
       for (std::int64_t s = 0; s < cn; ++s) largest = std::max(largest, alpha_[cf + s]);
+      const double raw_error =
+          terms * (layer_weight_bound(p) * (alpha_error_[p] + child_error - beta_error_[c]) + (children + 1) * kSubnormal);
+      alpha_error_[c] = largest > 0.0 ? raw_error / largest : kInfinity;
       if (largest > 0.0) {
         const double inverse = 1.0 / largest;
         for (std::int64_t s = 0; s < cn; ++s) alpha_[cf + s] *= inverse;
       }
     }
-    write_row(p, marginals);
+    if (!write_row(p, marginals)) return false;
   }
+  return true;
 }
 
 // One layer of the forward pass: row_accumulator_[choice] = Σ_S α_p(S) ψ(choice) Π_c β_c(…)
@@ -834,13 +864,24 @@ void Ehm::forward_layer(int p) {
 
 // The row of p's target from row_accumulator_: choice 0 splits into the miss and the exclusive
 // measurements in proportion to their weights (undoing the row scale).
-void Ehm::write_row(int p, MarginalTable& marginals) {
+// Refused (false) where a product of this cluster's net has underflowed (the processor's flag)
+// and the row's sum is not 1e12 times what underflow can have taken from it (the layer's nodes
+// × (α's and the children's β's bounds, weighted, plus a subnormal a product)), so every
+// probability written is within 1e-12 of the row computed without underflow. The bounds are
+// loose (every product is charged a loss); without underflow there is no loss to bound.
+bool Ehm::write_row(int p, MarginalTable& marginals) {
   const int choices = choice_begin_[p + 1] - choice_begin_[p];
   const double* acc = row_accumulator_.data();
   const int li = order_[p];
   const int t = targets_[li];
   double sum = 0.0;
   for (int ch = 0; ch < choices; ++ch) sum += acc[ch];
+  const int children = child_begin_[p + 1] - child_begin_[p];
+  double error = alpha_error_[p];
+  for (int k = child_begin_[p]; k < child_begin_[p + 1]; ++k) error += beta_error_[child_list_[k]];
+  const double row_error = static_cast<double>(layer_begin_[2 * p + 1]) * choices *
+                           (layer_weight_bound(p) * error + (children + 1) * kSubnormal);
+  if (!std::isfinite(sum) || (std::fetestexcept(FE_UNDERFLOW) && !(sum > 1e12 * row_error))) return false;
   const double inverse = 1.0 / sum;
   double* row = marginals.row(t);
   const double stay = acc[0] * inverse / stay_weight_[li];
@@ -854,6 +895,7 @@ void Ehm::write_row(int p, MarginalTable& marginals) {
   for (int g = gate_begin_[li], ch = 1; g < gate_begin_[li + 1]; ++g, ++ch) {
     row[graph_.edge_measurement(gate_edge_[g]) + 1] = acc[ch] * inverse;
   }
+  return true;
 }
 
 DABENCH_REGISTER_SINGLE_SCAN(Ehm);

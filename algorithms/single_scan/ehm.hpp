@@ -33,6 +33,10 @@
 //     divided by its largest entry (its log is kept per layer: stats().log_partition is log Z of
 //     the normalised problem), so nothing under- or overflows with hundreds of targets. The
 //     per-layer factors are common to all terms of a row, so they cancel in the marginals.
+//     Weights spanning more than double's range within one event can still underflow (one
+//     ψ = 1e300 gated by three targets, the others' misses 1e-300 after the row scale): each
+//     layer carries a bound on what underflow can have taken from its entries, and a row
+//     whose sum is not 1e12 times its bound is refused (skipped:numerical), never written.
 //
 // Readings / choices:
 //  - `order` (an int, since options are numeric). 1 = greedy minimum frontier: repeatedly take
@@ -135,8 +139,9 @@ class Ehm final : public SingleScanSolver {
   void build_tree();
   int build_tables();  // returns the largest key space
   // The net of the current cluster (ehm.cpp): run_net = build_net, backward_pass, forward_pass.
+  // Returns "" or the reason the cluster is refused ("work_limit", "numerical").
   template <int W>
-  [[nodiscard]] bool run_net(MarginalTable& marginals);
+  [[nodiscard]] const char* run_net(MarginalTable& marginals);
   template <int W>
   [[nodiscard]] bool build_net();
   template <int W>
@@ -146,10 +151,11 @@ class Ehm final : public SingleScanSolver {
   template <int W>
   double backward_pass();
   template <int W>
-  void forward_pass(MarginalTable& marginals);
+  [[nodiscard]] bool forward_pass(MarginalTable& marginals);  // false: underflow (see write_row)
   template <int W>
   void forward_layer(int p);
-  void write_row(int p, MarginalTable& marginals);
+  [[nodiscard]] bool write_row(int p, MarginalTable& marginals);
+  double layer_weight_bound(int p) const;  // max(1, largest choice weight of p's target)
   template <int W>
   std::int32_t find_or_insert(const std::uint64_t* key);
   template <int W>
@@ -203,6 +209,9 @@ class Ehm final : public SingleScanSolver {
   std::vector<std::int64_t> edge_begin_;   // p → first edge
   std::vector<std::uint64_t> keys_;
   std::vector<double> alpha_, beta_;
+  // Per position: a bound on the absolute error that underflow can have put in each stored
+  // (scaled) α and β of the layer (see backward_pass).
+  std::vector<double> alpha_error_, beta_error_;
   std::vector<std::int32_t> edges_;
   std::vector<double> row_accumulator_;    // per choice of the current position
   std::vector<double> child_beta_, prefix_;  // per child slot

@@ -1,6 +1,8 @@
 #include "algorithms/single_scan/exact_enumeration.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "harness/single_scan/registry.hpp"
 
@@ -42,7 +44,7 @@ double ExactEnumeration::descend(int depth, double prefix) {
   return total;
 }
 
-bool ExactEnumeration::enumerate_cluster(int first, int last, MarginalTable& marginals) {
+std::string_view ExactEnumeration::enumerate_cluster(int first, int last, MarginalTable& marginals) {
   order_.assign(graph_.cluster_targets().begin() + first, graph_.cluster_targets().begin() + last);
   // Most constrained targets first keeps the search tree narrow near the root.
   std::stable_sort(order_.begin(), order_.end(), [&](int a, int b) {
@@ -57,7 +59,15 @@ bool ExactEnumeration::enumerate_cluster(int first, int last, MarginalTable& mar
   }
   accumulator_.assign(size, 0.0);
   const double partition = descend(0, 1.0);
-  if (events_ > options_.max_events) return false;
+  if (events_ > options_.max_events) return "work_limit";
+  // Scaled weights are ≤ 1, so a product that underflows loses less than the smallest subnormal,
+  // and a completion count (≤ the events) is the most such a loss is later multiplied by: the
+  // mass lost is below 4 · events² · depth · 2^−1074. Where that is not 1e−12 of the partition
+  // function (weights whose products leave double's range, e.g. one ψ = 1e30 gated by 12
+  // targets), the marginals are not computed from it.
+  const double events = static_cast<double>(events_);
+  const double lost = 4.0 * events * events * depth * std::numeric_limits<double>::denorm_min();
+  if (!(partition > 1e12 * lost) || !std::isfinite(partition)) return "numerical";
 
   const double inverse = 1.0 / partition;
   for (int d = 0; d < depth; ++d) {
@@ -69,7 +79,7 @@ bool ExactEnumeration::enumerate_cluster(int first, int last, MarginalTable& mar
       row[graph_.edge_measurement(e) + 1] = sums[e - graph_.row_begin(target) + 1] * inverse;
     }
   }
-  return true;
+  return {};
 }
 
 void ExactEnumeration::solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) {
@@ -87,8 +97,9 @@ void ExactEnumeration::solve(const SingleScanProblem& problem, MarginalTable& ma
   marginals.reshape_zero(n, graph_.measurements());
   events_ = 0;
   for (int c = 0; c < graph_.clusters(); ++c) {
-    if (!enumerate_cluster(graph_.cluster_start(c), graph_.cluster_start(c + 1), marginals)) {
-      report.skipped = "work_limit";
+    if (const std::string_view refused = enumerate_cluster(graph_.cluster_start(c), graph_.cluster_start(c + 1), marginals);
+        !refused.empty()) {
+      report.skipped = refused;
       return;
     }
   }

@@ -8,7 +8,9 @@
 //
 // This is the test oracle and the reference for experiments that fit: the cost is the number
 // of feasible events, exponential in the cluster size. Past `max_events` the solve is refused
-// with status skipped:work_limit instead of running for hours.
+// with status skipped:work_limit instead of running for hours, and where the scaled products
+// underflow (weights spanning more than double's range within one event) with
+// skipped:numerical rather than marginals computed from a partition function of 0.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -42,7 +44,9 @@ class ExactEnumeration final : public SingleScanSolver {
   void solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) override;
 
  private:
-  [[nodiscard]] bool enumerate_cluster(int first, int last, MarginalTable& marginals);
+  // Empty, or why the cluster was refused: "work_limit", or "numerical" where underflow could
+  // have lost more than 1e-12 of the partition function.
+  [[nodiscard]] std::string_view enumerate_cluster(int first, int last, MarginalTable& marginals);
   double descend(int depth, double prefix);
 
   Options options_;

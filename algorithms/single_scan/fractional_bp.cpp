@@ -8,6 +8,7 @@
 
 #include "harness/core/errors.hpp"
 #include "harness/core/grow_buffer.hpp"
+#include "harness/core/target_clones.hpp"
 #include "harness/single_scan/registry.hpp"
 
 namespace dabench {
@@ -49,7 +50,7 @@ inline double shared_factor(double e_kappa, double sum, double gamma) {
 // so the subtraction loses at most one bit. A plain C_j − w_ij y_ij would return 0 or garbage
 // once one term exceeds the rest by ~1e16.
 template <Exponent kind>
-__attribute__((target_clones("avx2", "default"))) void pair_messages(int edges, double gamma, const int* __restrict column, const double* __restrict weight,
+DABENCH_AVX2_CLONES void pair_messages(int edges, double gamma, const int* __restrict column, const double* __restrict weight,
                    const double* __restrict from, const double* __restrict sum, const double* __restrict factor,
                    const int* __restrict top, const double* __restrict rest, double* __restrict to) {
   for (int e = 0; e < edges; ++e) {

@@ -2,15 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
+#include "harness/core/special_values.hpp"
 #include "harness/single_scan/registry.hpp"
 
 namespace dabench {
 
 namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // log ψ_i(j) in the ψ_i(0) = 1 normalisation, computed in the log domain so that side weights
 // cannot overflow or underflow the ratio w_ij / (w_i0 w_0j).

@@ -5,13 +5,13 @@
 #include <limits>
 
 #include "algorithms/tbd/support_likelihood.hpp"
+#include "harness/core/special_values.hpp"
 
 namespace dabench {
 
 namespace {
 
 constexpr double kMaxLogOdds = 700.0;  // log π is capped here (a node that must cover the cell)
-constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 
 }  // namespace
 

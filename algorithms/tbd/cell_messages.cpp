@@ -9,12 +9,11 @@
 
 #include "harness/core/grow_buffer.hpp"
 #include "harness/core/portable_exp.hpp"
+#include "harness/core/special_values.hpp"
 
 namespace dabench {
 
 namespace {
-
-constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 
 // log(exp(extra) + Σ exp(values[i])); NaN if any value is NaN (a non-finite message or frame
 // must not read as an impossible PO).

@@ -11,6 +11,7 @@
 //  - predict_objects(): the legacy POs of step k: at k = 0 the problem's initial objects
 //    (sample_prior, new labels), afterwards each PO predicted.
 //  - belief_samples(): POs' particles as the tracker's belief samples (beliefs.csv).
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
@@ -20,6 +21,9 @@
 #include "harness/tbd/tracker.hpp"
 
 namespace dabench {
+
+// An existence probability r from its log-odds log r/(1 − r).
+inline double logistic(double log_odds) { return 1.0 / (1.0 + std::exp(-log_odds)); }
 
 struct ParticleObject {
   int label = -1;          // unique over a run

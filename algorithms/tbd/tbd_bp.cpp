@@ -11,12 +11,6 @@
 
 namespace dabench {
 
-namespace {
-
-double logistic(double log_odds) { return 1.0 / (1.0 + std::exp(-log_odds)); }
-
-}  // namespace
-
 std::string TbdBpOptions::validate() const {
   if (iterations < 1 || iterations > 20) return "iterations must be in 1..20";
   if (particles < 10 || particles > 1000000) return "particles must be in 10..1e6";

@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
+#include "harness/core/log_gamma.hpp"
 #include "harness/tbd/registry.hpp"
 
 namespace dabench {
@@ -407,7 +408,7 @@ double IembCellMeasurement::gamma_log_likelihood(const Eigen::Vector4d* state) {
                                          (*sc_)[c](0, 0));
     const double shape = m.mean * m.mean / m.variance;
     const double scale = m.variance / m.mean;
-    total += (shape - 1.0) * std::log(y) - y / scale - shape * std::log(scale) - std::lgamma(shape);
+    total += (shape - 1.0) * std::log(y) - y / scale - shape * std::log(scale) - log_gamma(shape);
   }
   return total;
 }

@@ -2,25 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include <fmt/format.h>
 
 #include "algorithms/tbd/new_objects.hpp"
+#include "harness/core/special_values.hpp"
 #include "harness/tbd/registry.hpp"
 
 namespace dabench {
 
 namespace {
 
-constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 // A new Bernoulli enters the exclusivity SPA if its existence alone (an upper bound: ν ≤ 1)
 // reaches this; the others are recycled at their own existence, and their effect on the
 // Bernoullis in the SPA would be below this odds.
 constexpr double kEnterExistence = 1e-4;
 constexpr double kSweepTolerance = 1e-6;
-
-double logistic(double log_odds) { return 1.0 / (1.0 + std::exp(-log_odds)); }
 
 }  // namespace
 

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "harness/core/log_gamma.hpp"
+
 namespace dabench {
 
 namespace {
@@ -16,7 +18,7 @@ double lower_gamma_regularised(double a, double x) {
     term *= x / (a + n);
     sum += term;
   }
-  return std::exp(a * std::log(x) - x - std::lgamma(a)) * sum;
+  return std::exp(a * std::log(x) - x - log_gamma(a)) * sum;
 }
 
 }  // namespace

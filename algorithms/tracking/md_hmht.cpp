@@ -485,7 +485,7 @@ class MdHmhtRun {
   RankedListMerge merge_;
 };
 
-void check_problem(const TrackingProblem& problem) {
+void check_md_hmht_problem(const TrackingProblem& problem) {
   const MultipathMeasurementModel& sensor = *problem.sensor;
   if (sensor.state_dim() != 4 || sensor.measurement_dim() != md_hmht::TrackFilter::kDim) {
     throw InputError("md-hmht: needs ground states [g, g', theta, theta'] and slant measurements [r, r', zeta]");
@@ -513,7 +513,7 @@ void MdHmhtTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveR
     report.skipped = "problem_without_multipath_sensor";
     return;
   }
-  check_problem(problem);
+  check_md_hmht_problem(problem);
   try {
     MdHmhtRun(options_, problem, nullptr).run(tracks);
   } catch (const UnscentedFailure& failure) {  // a covariance lost positive definiteness: no tracks
@@ -528,7 +528,7 @@ void md_hmht::run_observed(const MdHmhtOptions& options, const TrackingProblem& 
                            const ScanObserver& observer) {
   if (std::string why = options.validate(); !why.empty()) throw InputError("md-hmht: " + why);
   if (!problem.sensor) throw InputError("md-hmht: the problem has no multipath sensor");
-  check_problem(problem);
+  check_md_hmht_problem(problem);
   const MdHmhtOptions resolved = options.resolved();
   MdHmhtRun(resolved, problem, &observer).run(tracks);
 }

@@ -628,7 +628,7 @@ class MptfRun {
   Labeller labeller_;
 };
 
-void check_problem(const TrackingProblem& problem) {
+void check_mptf_problem(const TrackingProblem& problem) {
   if (!problem.sensor) throw InputError("mptf: the problem has no sensor model");
   const MultipathMeasurementModel& sensor = *problem.sensor;
   if (sensor.state_dim() != 4 || sensor.measurement_dim() != 3) {
@@ -656,7 +656,7 @@ void check_problem(const TrackingProblem& problem) {
 
 void MultipathTrackFusion::run(const TrackingProblem& problem, TrackSet& tracks, SolveReport& report) {
   report.reset();
-  check_problem(problem);
+  check_mptf_problem(problem);
   MptfRun(options_, problem).run(tracks);
 }
 

@@ -2,17 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include <fmt/format.h>
 
 #include "harness/core/errors.hpp"
+#include "harness/core/special_values.hpp"
 
 namespace dabench {
 
 namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // 1 / (1 + e^{−log_odds}): a binary variable's belief from its log odds.
 double belief_of(double log_odds) { return 1.0 / (1.0 + std::exp(-log_odds)); }

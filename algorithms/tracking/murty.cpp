@@ -2,17 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "harness/core/errors.hpp"
 #include "harness/core/grow_buffer.hpp"
+#include "harness/core/special_values.hpp"
 
 namespace dabench {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kFree = -2;  // forced_column_ of a row with no forced pair
 
 void check_entry(double value, const char* what, int row, int column) {

@@ -226,6 +226,15 @@ Experiment parse_experiment(const std::string& path, std::string text) {
   }
   if (experiment.output.empty()) experiment.output = "results/" + experiment.name;
 
+  double points = 0.0;  // the sweep's size before any point is made (a product can overflow)
+  for (const SweepBlock& block : blocks) {
+    double block_points = 1.0;
+    for (const auto& axis : block.axes) block_points *= static_cast<double>(axis.second.size());
+    points += block_points;
+  }
+  if (points > kMaxSweepPoints) {
+    throw InputError(fmt::format("{}: the sweep has {:.3g} points, more than {:.0f}", path, points, kMaxSweepPoints));
+  }
   for (const SweepBlock& block : blocks) {
     for (const auto& axis : block.axes) {
       bool known = false;

@@ -38,6 +38,8 @@
 
 namespace dabench {
 
+constexpr double kMaxSweepPoints = 1e6;  // all blocks together; a range holds at most as many values
+
 struct Experiment {
   std::string path;         // as given
   std::string text;         // file contents (recorded in meta.json)

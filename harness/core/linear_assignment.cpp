@@ -3,19 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "harness/core/grow_buffer.hpp"
+#include "harness/core/special_values.hpp"
 
 namespace dabench {
-
-namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-}  // namespace
 
 bool LinearAssignment::solve(const double* cost, int rows, int cols, std::vector<int>& column_of_row,
                              double& total_cost) {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "harness/core/log_gamma.hpp"
+
 namespace dabench {
 
 namespace {
@@ -106,7 +108,7 @@ std::int64_t RandomStream::poisson(double mean) {
     if (us >= 0.07 && v <= vr) return static_cast<std::int64_t>(k);
     if (k < 0.0 || (us < 0.013 && v > us)) continue;
     if (std::log(v) + std::log(inv_alpha) - std::log(a / (us * us) + b) <=
-        -mean + k * loglam - std::lgamma(k + 1.0)) {
+        -mean + k * loglam - log_gamma(k + 1.0)) {
       return static_cast<std::int64_t>(k);
     }
   }

@@ -26,6 +26,7 @@ SingleScanResult solve_single_scan(SingleScanSolver& solver, const SingleScanPro
   } catch (const std::exception& error) {  // as the runner: a failed solve is a status
     result.report.skipped = std::string("failed:") + error.what();
   }
+  reject_non_distribution(problem, result.marginals, result.report);
   if (!result.report.skipped.empty()) result.marginals = MarginalTable();
   return result;
 }

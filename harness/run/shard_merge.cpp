@@ -23,6 +23,7 @@
 #include "harness/run/run_folder.hpp"
 #include "harness/run/run_meta.hpp"
 #include "harness/run/run_plan.hpp"
+#include "harness/run/shard_meta.hpp"
 
 namespace dabench {
 
@@ -30,55 +31,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A shard folder as its meta.json describes it.
-struct ShardFolder {
-  std::string path;
-  std::string meta;
-  std::string label;  // "K/N"
-  int index = 0, count = 0;
-
-  std::string field(std::string_view key) const {
-    const auto value = json_value(meta, key);
-    if (!value) throw InputError(fmt::format("{}/meta.json: no '{}' field", path, key));
-    return *value;
-  }
-  double number(std::string_view key) const {
-    double value = std::nan("");
-    return parse_double(json_value(meta, key).value_or(""), value) ? value : std::nan("");
-  }
-};
-
-ShardFolder read_shard(const std::string& path) {
-  const fs::path meta = fs::path(path) / "meta.json";
-  if (!fs::exists(meta)) throw InputError(fmt::format("{}: no meta.json (not a run folder)", path));
-  ShardFolder folder{path, read_input_file(meta.string(), "a shard's meta.json", kMaxMetaBytes), "", 0, 0};
-  const auto label = json_value(folder.meta, "shard");
-  if (!label) throw InputError(fmt::format("{}: not a shard (its run had no --shard K/N)", path));
-  folder.label = *label;
-  std::int64_t index = 0, count = 0;
-  const auto slash = label->find('/');
-  if (slash == std::string::npos || !parse_int64(label->substr(0, slash), index) ||
-      !parse_int64(label->substr(slash + 1), count) || index < 1 || index > count) {
-    throw InputError(fmt::format("{}/meta.json: malformed shard '{}'", path, *label));
-  }
-  folder.index = static_cast<int>(index);
-  folder.count = static_cast<int>(count);
-  const std::string status = folder.field("status");
-  if (status != "complete") {
-    throw InputError(fmt::format("{}: shard {} is {} ({} of {} items done); finish it with its dabench run command and "
-                                 "--resume", path, folder.label, status, folder.field("items_done"),
-                                 json_value(folder.meta, "shard_items").value_or("?")));
-  }
-  return folder;
-}
-
 // The shards, checked to be one plan's 1..N each once, ordered by K.
-std::vector<ShardFolder> read_shards(const std::vector<std::string>& paths) {
+std::vector<ShardMeta> read_shards(const std::vector<std::string>& paths) {
   if (paths.empty()) throw InputError("merge: no shard folders given");
-  std::vector<ShardFolder> given;
-  for (const std::string& path : paths) given.push_back(read_shard(path));
-  const ShardFolder& first = given.front();
-  for (const ShardFolder& folder : given) {
+  std::vector<ShardMeta> given;
+  for (const std::string& path : paths) given.push_back(read_shard_meta(path));
+  const ShardMeta& first = given.front();
+  for (const ShardMeta& folder : given) {
     if (folder.field("fingerprint") != first.field("fingerprint")) {
       throw InputError(fmt::format("{}: a shard of another run plan (fingerprint {}, but {} has {})", folder.path,
                                    folder.field("fingerprint"), first.path, first.field("fingerprint")));
@@ -91,54 +50,33 @@ std::vector<ShardFolder> read_shards(const std::vector<std::string>& paths) {
       throw InputError(fmt::format("{}: a shard of another run (its experiment text differs from {}'s)", folder.path,
                                    first.path));
     }
-    if (folder.count != first.count) {
+    if (folder.shard.count != first.shard.count) {
       throw InputError(fmt::format("{}: shard {} of a split into {}, but {} is shard {}", folder.path, folder.label,
-                                   folder.count, first.path, first.label));
+                                   folder.shard.count, first.path, first.label));
     }
   }
-  std::vector<const ShardFolder*> by_index(static_cast<std::size_t>(first.count), nullptr);
-  for (const ShardFolder& folder : given) {
-    const ShardFolder*& slot = by_index[static_cast<std::size_t>(folder.index - 1)];
+  std::vector<const ShardMeta*> by_index(static_cast<std::size_t>(first.shard.count), nullptr);
+  for (const ShardMeta& folder : given) {
+    const ShardMeta*& slot = by_index[static_cast<std::size_t>(folder.shard.index - 1)];
     if (slot != nullptr) {
       throw InputError(fmt::format("shard {} given twice: {} and {}", folder.label, slot->path, folder.path));
     }
     slot = &folder;
   }
-  std::string missing;
-  for (int k = 1; k <= first.count; ++k) {
-    if (by_index[static_cast<std::size_t>(k - 1)] == nullptr) missing += fmt::format("{}{}/{}", missing.empty() ? "" : ", ", k, first.count);
+  std::string missing;  // the first few, so that the message stays one line
+  constexpr int kListed = 8;
+  int absent = 0;
+  for (int k = 1; k <= first.shard.count; ++k) {
+    if (by_index[static_cast<std::size_t>(k - 1)] != nullptr) continue;
+    if (++absent <= kListed) missing += fmt::format("{}{}/{}", missing.empty() ? "" : ", ", k, first.shard.count);
   }
-  if (!missing.empty()) {
-    throw InputError(fmt::format("shards missing: {} (given {} of {})", missing, given.size(), first.count));
+  if (absent > kListed) missing += fmt::format(" and {} more", absent - kListed);
+  if (absent > 0) {
+    throw InputError(fmt::format("shards missing: {} (given {} of {})", missing, given.size(), first.shard.count));
   }
-  std::vector<ShardFolder> ordered;
-  for (const ShardFolder* folder : by_index) ordered.push_back(*folder);
+  std::vector<ShardMeta> ordered;
+  for (const ShardMeta* folder : by_index) ordered.push_back(*folder);
   return ordered;
-}
-
-// The plan of the shards' run, rebuilt from the experiment text, seed and trials they record.
-RunPlan rebuild_plan(const ShardFolder& shard, const std::string& output) {
-  RunOptions options;
-  std::int64_t trials = 0, seed = 0;
-  if (!parse_int64(shard.field("trials_per_point"), trials) || !parse_int64(shard.field("seed"), seed)) {
-    throw InputError(fmt::format("{}/meta.json: malformed trials_per_point or seed", shard.path));
-  }
-  options.trials = trials;
-  options.seed = static_cast<std::uint64_t>(seed);
-  options.threads = 1;
-  options.output = output;
-  RunPlan plan;
-  try {
-    plan = make_run_plan(parse_experiment(shard.field("experiment_path"), shard.field("experiment")), options);
-  } catch (const InputError& error) {
-    throw InputError(fmt::format("{}/meta.json: its experiment no longer makes a run plan: {}", shard.path, error.what()));
-  }
-  if (plan.fingerprint() != shard.field("fingerprint")) {
-    throw InputError(fmt::format("{}: its experiment now gives fingerprint {}, not the recorded {} (algorithms or "
-                                 "defaults changed since the shards ran?)", shard.path, plan.fingerprint(),
-                                 shard.field("fingerprint")));
-  }
-  return plan;
 }
 
 // One shard's file, read row by row with each row's item (point · trials + trial).
@@ -189,11 +127,11 @@ class ShardRows {
 // Writes `name` of the merged run to `target`: block b of the plan's items comes from shard
 // b mod N, whose rows must be exactly its blocks' items in order (`rows_per_item` rows each
 // when not 0).
-void merge_file(const RunPlan& plan, const std::vector<ShardFolder>& shards, const std::string& name,
+void merge_file(const RunPlan& plan, const std::vector<ShardMeta>& shards, const std::string& name,
                 const std::string& header, long long rows_per_item, const fs::path& target) {
   std::vector<ShardRows> readers;
   readers.reserve(shards.size());
-  for (const ShardFolder& shard : shards) readers.emplace_back(plan, fs::path(shard.path) / name, header);
+  for (const ShardMeta& shard : shards) readers.emplace_back(plan, fs::path(shard.path) / name, header);
   std::FILE* out = std::fopen(target.c_str(), "wb");
   if (out == nullptr) throw WriteError(fmt::format("{}: cannot open for writing ({})", target.string(), std::strerror(errno)));
   int reason = 0;  // errno of the first failed write; nothing more is written after it
@@ -244,7 +182,7 @@ void merge_file(const RunPlan& plan, const std::vector<ShardFolder>& shards, con
 }
 
 // meta.json's process fields of the merged run, from the shards'.
-RunRecord merged_record(const std::vector<ShardFolder>& shards, const std::string& command_line, long long items) {
+RunRecord merged_record(const std::vector<ShardMeta>& shards, const std::string& command_line, long long items) {
   RunRecord record;
   record.command_line = command_line;
   record.status = "complete";
@@ -252,7 +190,7 @@ RunRecord merged_record(const std::vector<ShardFolder>& shards, const std::strin
   record.processes = static_cast<long long>(shards.size());
   std::set<std::string> seen_hosts;
   double busy = 0.0, capacity = 0.0;
-  for (const ShardFolder& shard : shards) {
+  for (const ShardMeta& shard : shards) {
     const std::string start = shard.field("start_time"), end = shard.field("end_time"), host = shard.field("host");
     if (record.start_time.empty() || start < record.start_time) record.start_time = start;
     if (end > record.end_time) record.end_time = end;
@@ -272,16 +210,16 @@ RunRecord merged_record(const std::vector<ShardFolder>& shards, const std::strin
 }  // namespace
 
 MergeOutcome merge_shards(const MergeOptions& options) {
-  const std::vector<ShardFolder> shards = read_shards(options.shards);
-  for (const ShardFolder& shard : shards) {
+  const std::vector<ShardMeta> shards = read_shards(options.shards);
+  for (const ShardMeta& shard : shards) {
     std::error_code error;
     if (fs::exists(options.output) && fs::equivalent(options.output, shard.path, error)) {
       throw InputError(fmt::format("{}: is shard {}; merge into another folder", options.output, shard.label));
     }
   }
-  RunPlan plan = rebuild_plan(shards.front(), options.output);
-  for (const ShardFolder& shard : shards) {
-    plan.threads = std::max(plan.threads, static_cast<int>(std::max(1.0, shard.number("threads"))));
+  RunPlan plan = shard_run_plan(shards.front(), options.output);
+  for (const ShardMeta& shard : shards) {
+    plan.threads = std::max(plan.threads, shard.threads());
   }
   const bool holds_run = fs::exists(trials_path(plan)) || fs::exists(meta_path(plan));
   if (holds_run && !options.force) {

@@ -60,6 +60,7 @@ void SingleScanExecution::run_item(SingleScanWorker& worker, long long item) con
       report.skipped = std::string("failed:") + error.what();
     }
     worker.time_us[a] = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+    reject_non_distribution(problem, worker.marginals[a], report);
     if (a < references && report.skipped.empty()) reference = a;
   }
   worker.busy_seconds += std::chrono::duration<double>(Clock::now() - start).count();

@@ -1,7 +1,7 @@
+#include "harness/core/special_values.hpp"
 #include "harness/run/tbd_execution.hpp"
 
 #include <chrono>
-#include <limits>
 
 #include <fmt/format.h>
 
@@ -13,7 +13,6 @@ namespace dabench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void append_step_metrics(std::string& row, const TbdStepMetrics& m) {
   for (const double value : {static_cast<double>(m.objects), static_cast<double>(m.estimates), m.gospa, m.gospa_p2,

@@ -1,8 +1,8 @@
+#include "harness/core/special_values.hpp"
 #include "harness/run/tracking_execution.hpp"
 
 #include <chrono>
 #include <cmath>
-#include <limits>
 
 #include <fmt/format.h>
 
@@ -16,7 +16,6 @@ namespace dabench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kStateColumns = 4;  // [g, ġ, ϑ, ϑ̇]
 constexpr TrackingMetrics kMissing{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
 

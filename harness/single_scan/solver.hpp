@@ -16,4 +16,10 @@ class SingleScanSolver {
   virtual void solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) = 0;
 };
 
+// After a solve that was not skipped: a table that is not a distribution per target (a NaN or
+// infinite entry, one outside [0, 1], a row whose sum is more than 1e-6 from one), e.g. from an
+// overflow, is recorded as skipped:numerical, so no metric is computed from it. Every caller of
+// solve() (the runner, the library entry point, `dabench solve`) applies it.
+void reject_non_distribution(const SingleScanProblem& problem, const MarginalTable& marginals, SolveReport& report);
+
 }  // namespace dabench

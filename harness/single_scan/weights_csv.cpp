@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <vector>
 
@@ -18,6 +17,10 @@ SingleScanProblem read_weights_csv(const std::string& path) {
   check_input_file(path, "a weights file", kMaxWeightsBytes);
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("{}: cannot read weights file", path));
+  return parse_weights_csv(path, in);
+}
+
+SingleScanProblem parse_weights_csv(const std::string& path, std::istream& in) {
   std::vector<double> values;
   long long columns = -1;
   long long rows = 0;

@@ -1,7 +1,7 @@
+#include "harness/core/special_values.hpp"
 #include "harness/tbd/metrics.hpp"
 
 #include <cmath>
-#include <limits>
 
 namespace dabench {
 
@@ -26,7 +26,6 @@ TbdStepMetrics TbdScorer::score(const TbdTruth& truth, int k, const std::vector<
   const GospaResult main = gospa_.compute(truth_points_, estimate_points_, options_.gospa(options_.gospa_order));
   m.gospa = main.distance;
   m.gospa_p2 = gospa_.compute(truth_points_, estimate_points_, options_.gospa(2.0)).distance;
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   const bool parts = options_.gospa_alpha == 2.0;
   m.localisation = parts ? main.localisation : kNaN;
   m.missed = parts ? main.missed_count : kNaN;

@@ -1,3 +1,4 @@
+#include "harness/core/special_values.hpp"
 #include "harness/tracking/metrics.hpp"
 
 #include <algorithm>
@@ -11,7 +12,6 @@ namespace dabench {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kMaxOspaSmallerSet = 16;  // exact subset DP below is O(n · 2^m · m)
 
 int last_scan(const Track& track) { return track.first_scan + track.length() - 1; }

@@ -16,6 +16,7 @@ DERIVED_FROM = "results/multiscan/fig4"  # the study whose per-item cost the der
 BP_PAPER_BOUND = 0.015  # bp-marginal-association Sec. V-B: "average errors of 0.015 or less in most cases"
 MPI = "mpirun --allow-run-as-root"
 PAIRS = ["a", "b"]
+FUZZ_LONG_RUNS = "fuzz/long-runs.csv"  # written by FUZZ_RECORD=fuzz/long-runs.csv scripts/fuzz.sh SECONDS
 
 RUNS = [Run(QUICKSTART, "./build/dabench run experiments/quickstart.ini --force", "the quick start's run")]
 RUNS += [
@@ -166,11 +167,31 @@ def study_wall_times(report):
         f" (more: {', '.join(resumed)} was resumed and records its last session only)" if resumed else ""))
 
 
+def fuzz_long_runs(report):
+    """The long libFuzzer runs recorded by `FUZZ_RECORD=fuzz/long-runs.csv scripts/fuzz.sh`: per
+    target the time, the inputs tried and their rate, the corpus (seeds, inputs that grew it) and
+    the coverage reached, each row a run that ended without a finding."""
+    try:
+        rows = data.read_rows(report.root, FUZZ_LONG_RUNS)
+    except data.DataError:
+        rows = []
+    if not rows:
+        report.value("fuzz.long_runs", "No long run is recorded yet (`fuzz/long-runs.csv` is empty).")
+        return
+    table = [[f"`fuzz_{r['target']}`", markdown.duration(data.num(r, "seconds")), thousands(data.num(r, "inputs")),
+              thousands(data.num(r, "inputs_per_second")), r["seed_inputs"], r["new_inputs"], r["edges"], r["features"],
+              f"{r['peak_rss_mb']} MB", f"{r['date']}, `{r['commit']}`, {r['compiler']}"] for r in rows]
+    report.value("fuzz.long_runs", markdown.table(
+        ["target", "time", "inputs tried", "per second", "seed inputs", "new inputs", "edges", "features",
+         "peak memory", "when, commit, compiler"], table, "lrrrrrrrrl"))
+
+
 def checks(report):
     quickstart(report)
     algorithm2(report)
     cluster(report)
     study_wall_times(report)
+    fuzz_long_runs(report)
 
 
 STUDY = Study(name="readme", report="README.md", template="reports/templates/README.md", runs=RUNS, steps=STEPS,

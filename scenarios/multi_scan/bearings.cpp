@@ -66,7 +66,7 @@ class TruncatedNormal {
 };
 
 // Per-thread buffers reused across trials (generate() is const and called concurrently).
-struct Scratch {
+struct BearingsScratch {
   std::vector<BearingsDetails::Target> targets;
   std::vector<std::vector<double>> bearings;
   std::vector<std::vector<int>> origin;
@@ -164,7 +164,7 @@ void BearingsScenario::generate(RandomStream& rng, MultiScanSample& sample) cons
 
 void BearingsScenario::generate(RandomStream& rng, MultiScanSample& sample, BearingsDetails* details) const {
   const Options& o = options_;
-  thread_local Scratch scratch;
+  thread_local BearingsScratch scratch;
   auto& targets = details != nullptr ? details->targets : scratch.targets;
   auto& bearings = details != nullptr ? details->bearings : scratch.bearings;
   auto& origin = details != nullptr ? details->origin : scratch.origin;

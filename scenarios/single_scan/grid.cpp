@@ -22,15 +22,15 @@ Eigen::Vector2d normal2(RandomStream& rng) {
   return {x, y};
 }
 
-struct Track {
+struct PredictedTrack {
   Eigen::Vector2d estimate;  // ẑ_i
   double inverse_s;          // S_i = s_i·I2, so (z − ẑ)'S⁻¹(z − ẑ) = |z − ẑ|²/s_i
   double scale;              // Pd / (λ_fa (1 − Pd) 2π sqrt(det S_i)), det S_i = s_i²
 };
 
 // Per-thread buffers reused across trials (generate() is const and called concurrently).
-struct Scratch {
-  std::vector<Track> tracks;
+struct GridScratch {
+  std::vector<PredictedTrack> tracks;
   std::vector<Eigen::Vector2d> points;  // measurements: detections, then false alarms; shuffled
   std::vector<int> origin;              // per point: target index, or −1 for a false alarm
   std::vector<int> column;              // per point: 1-based column of the final ψ, 0 if dropped
@@ -98,7 +98,7 @@ void GridScenario::generate(RandomStream& rng, ScenarioSample& sample, GridDetai
   const Options& o = options_;
   const int n = o.rows * o.cols;
   auto truth = [&](int i) { return Eigen::Vector2d((i % o.cols) * o.spacing, (i / o.cols) * o.spacing); };
-  thread_local Scratch scratch;
+  thread_local GridScratch scratch;
   auto& [tracks, points, origin, column, psi] = scratch;
   if (details != nullptr) details->targets.resize(n);
 

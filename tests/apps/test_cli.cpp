@@ -742,6 +742,13 @@ TEST_CASE("cli merge: missing, duplicated, foreign or incomplete shards are one-
     dir.write("s3/trials.csv", dir.read("s1/trials.csv"));
     expect_error(dir, {"merge", "m", "s1", "s2", "s3"}, {"s3/trials.csv", "shard 3/3"});
   }
+  SECTION("a split into a million, one shard given: the first eight missing named, the rest counted") {
+    std::string meta = dir.read("s1/meta.json");
+    meta.replace(meta.find("\"shard\": \"1/3\""), 14, "\"shard\": \"1/1000000\"");
+    dir.write("s1/meta.json", meta);
+    expect_error(dir, {"merge", "m", "s1"}, {"shards missing: 2/1000000, 3/1000000", "9/1000000 and 999991 more",
+                                            "(given 1 of 1000000)"});
+  }
   SECTION("not a folder") { expect_error(dir, {"merge", "m", "s1", "nothere", "s3"}, {"nothere", "meta.json"}); }
   SECTION("no shards") { expect_error(dir, {"merge", "m"}, {"merge", "shard folders"}); }
   SECTION("into a shard") { expect_error(dir, {"merge", "s1", "s1", "s2", "s3"}, {"s1", "shard 1/3"}); }

@@ -4,7 +4,7 @@
 // defaults (entry.create({})) and, on a fixed set of small problems including degenerate ones,
 // either refuses (report.skipped non-empty) or returns:
 //   - a table of shape n×(m+1) whose entries are finite and in [0, 1],
-//   - rows summing to 1 within 1e-9,
+//   - rows summing to 1 within 1e-9 (also on weights spanning more than double's range),
 //   - p(i, j) == 0 exactly wherever ψ_i(j) == 0 (a gated-out pair is impossible),
 // and results that depend only on the problem: bit-identical from a fresh solver, from a solver
 // that solved other problems in between (workspace reuse), and into a reused output table.
@@ -60,6 +60,15 @@ std::vector<NamedProblem> contract_problems() {
   }
   problems.push_back({"more measurements than targets 2 x 7", random_problem(rng, 2, 7, Density::dense)});
   problems.push_back({"more targets than measurements 7 x 2", random_problem(rng, 7, 2, Density::dense)});
+  // Weights beyond double's range within one event (found by fuzz/fuzz_weights): the plain
+  // message s − ψν of BP cancels to 0, row-scaled products underflow. Refusing is allowed.
+  problems.push_back({"psi 1e20 shared by 5 targets", from_psi(RowMatrix::Constant(5, 1, 1e20))});
+  problems.push_back({"psi 1e30 gated by 12 targets", from_psi(RowMatrix::Constant(12, 1, 1e30))});
+  {
+    RowMatrix psi(6, 3);
+    psi << 150, 1e300, 0, 15e-150, 1e300, 0, 150, 1e300, 0, 5, 0, 0, 5, 0, 0, 0, 0, 7.5;
+    problems.push_back({"1e300 beside 1e-149 (fuzz finding)", from_psi(psi)});
+  }
   for (const NamedProblem& p : problems) REQUIRE(p.problem.validate().empty());
   return problems;
 }

@@ -13,11 +13,11 @@
 
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #include "algorithms/single_scan/bp.hpp"
 #include "algorithms/tracking/multipath_association.hpp"
+#include "harness/core/special_values.hpp"
 #include "tests/support/brute_force.hpp"
 #include "tests/support/input_error.hpp"
 
@@ -25,8 +25,6 @@ using namespace dabench;
 using namespace dabench::test;
 
 namespace {
-
-constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
 
 MultipathEvidence random_evidence(RandomStream& rng, int targets, int paths, int measurements, double gated_out) {
   MultipathEvidence evidence;

@@ -7,14 +7,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include "harness/core/errors.hpp"
+#include "harness/core/special_values.hpp"
 #include "harness/tracking/metrics.hpp"
 
 namespace {
 
+using dabench::kNaN;
 using dabench::Track;
 using dabench::TrackingMetrics;
 using dabench::TrackingMetricsOptions;
@@ -23,7 +24,6 @@ using dabench::TrackSet;
 using Eigen::Vector2d;
 
 constexpr int kScans = 30;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Fixed [g, ġ, ϑ, ϑ̇] of the two targets, and their alive scans.
 const double kRange[2] = {1700.0, 1850.0};

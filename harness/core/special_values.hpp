@@ -1,0 +1,12 @@
+#pragma once
+// The special doubles the algorithms and metrics use by name: ±∞ for "no finite cost" or log 0,
+// NaN for "undefined" (a metric with nothing to measure).
+#include <limits>
+
+namespace dabench {
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+inline constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+}  // namespace dabench
