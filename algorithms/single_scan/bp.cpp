@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "harness/core/grow_buffer.hpp"
@@ -192,15 +193,18 @@ double BeliefPropagation::build_edges(const SingleScanProblem& problem) {
   active_ = active;
   // Can a row sum 1 + Σ ψν or a column sum 1 + Σ μ reach 2^16 (ν ≤ 1 and μ ≤ ψ, since the sums
   // less a term are ≥ 1)? Then the guarded iteration runs (see bp_iteration_guarded).
-  double largest_sum = 0.0;
+  // The same bounds with the row's base show whether a sum can overflow (ψ near 1e308).
+  double largest_sum = 0.0, largest_total = 0.0;
   std::fill_n(column_top_, shared_columns, 0.0);  // here: Σ_i ψ_ij per shared measurement
   for (int a = 0; a < active; ++a) {
     double sum = 0.0;
     for (int e = active_begin_[a]; e < active_begin_[a + 1]; ++e) sum += psi_[e], column_top_[column_[e]] += psi_[e];
     largest_sum = std::max(largest_sum, sum);
+    largest_total = std::max(largest_total, base_[a] + sum);
   }
   for (int c = 0; c < shared_columns; ++c) largest_sum = std::max(largest_sum, column_top_[c]);
   guarded_ = !(largest_sum + 1.0 < 0x1p16);  // NaN-safe: ψ = inf runs guarded too
+  out_of_range_ = !(std::max(largest_total, largest_sum + 1.0) < SingleScanProblem::kOutOfRangeSum);
   if (guarded_) grow_buffer(column_top_edge_, shared_columns);
   dense_ = !guarded_ && edges > 0 && active * stride_ <= options_.dense_cells && active * stride_ <= 4 * edges;
   cells_ = dense_ ? active * stride_ : edges;
@@ -295,10 +299,15 @@ void BeliefPropagation::write_beliefs(int n, int m, MarginalTable& marginals) co
   }
   for (int i = 0; i < n; ++i) {
     double* row = marginals.row(i);
-    double s = 1.0;
+    double s = 1.0, missed = 1.0;
     for (int j = 1; j <= m; ++j) s += row[j];
+    if (!(s <= std::numeric_limits<double>::max())) {  // terms near 1e308 overflowed: divide by the largest first
+      const double top = *std::max_element(row + 1, row + m + 1);
+      missed = s = 1.0 / top;
+      for (int j = 1; j <= m; ++j) row[j] /= top, s += row[j];
+    }
     const double inverse = 1.0 / s;
-    row[0] = inverse;
+    row[0] = missed * inverse;
     for (int j = 1; j <= m; ++j) row[j] *= inverse;
   }
 }
@@ -309,6 +318,10 @@ void BeliefPropagation::solve(const SingleScanProblem& problem, MarginalTable& m
   stop_level_ = 0.5 * std::log1p(options_.delta);
   report.w_star = w_star_;
 
+  if (out_of_range_) {  // eqs (20)-(21) would divide by an overflowed sum: μ = 0, silently wrong
+    report.skipped = "numerical";
+    return;
+  }
   int iterations = 0;
   bool done = edges_ == 0;  // no measurement shared by two targets: the graph is a forest
   while (!done && iterations < options_.max_iterations) {

@@ -67,6 +67,7 @@ class BeliefPropagation final : public SingleScanSolver {
   double w_star_ = 0.0;
   bool dense_ = false;               // iterate on the dense block (else on the edge lists)
   bool guarded_ = false;             // sums can reach 2^16: the cancellation-guarded iteration
+  bool out_of_range_ = false;        // sums can overflow (ψ near 1e308): skipped:numerical
   int stride_ = 0;                   // dense row stride: shared measurements rounded up to 4
   int edges_ = 0;                    // shared edges of the current problem
   int active_ = 0;                   // targets with a shared edge

@@ -318,6 +318,10 @@ FractionalBp::FractionalBp(const Options& options) : options_(options) {
 
 void FractionalBp::solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) {
   report.reset();
+  if (!(problem.largest_weight_sum() < SingleScanProblem::kOutOfRangeSum)) {
+    report.skipped = "numerical";
+    return;
+  }
   const FractionalBpOutcome outcome =
       kernel_.solve(problem.psi, problem.miss_weight, problem.clutter_weight, options_);
   report.iterations = outcome.iterations;

@@ -254,17 +254,29 @@ RunPlan make_run_plan(Experiment loaded, const RunOptions& options) {
                                  "'reference' lines are not used (remove them)", path, experiment.scenario,
                                  kind_name(plan.kind)));
   }
-  for (std::size_t p = 0; p < experiment.points.size(); ++p) {
+  const auto resolve = [&](std::size_t p) {
     try {
       const std::vector<KeyValue>& settings = experiment.points[p];
-      plan.point_params.push_back(multi_scan != nullptr ? multi_scan->resolve(settings)
-                                  : tracking != nullptr ? tracking->resolve(settings)
-                                  : tbd != nullptr      ? tbd->resolve(settings)
-                                                        : single_scan->resolve(settings));
+      return multi_scan != nullptr ? multi_scan->resolve(settings)
+             : tracking != nullptr ? tracking->resolve(settings)
+             : tbd != nullptr      ? tbd->resolve(settings)
+                                   : single_scan->resolve(settings);
     } catch (const InputError& error) {
       throw InputError(fmt::format("{}: sweep point {}: {}", path, p, error.what()));
     }
+  };
+  // First the points whose keys differ from the point before (each sweep block's first): a
+  // misspelt key is reported at once, not after every point of the blocks before it (a sweep may
+  // have 10^6 points, each checked in turn below).
+  const auto same_keys = [](const std::vector<KeyValue>& a, const std::vector<KeyValue>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                      [](const KeyValue& x, const KeyValue& y) { return x.key == y.key; });
+  };
+  for (std::size_t p = 0; p < experiment.points.size(); ++p) {
+    if (p == 0 || !same_keys(experiment.points[p], experiment.points[p - 1])) (void)resolve(p);
   }
+  plan.point_params.reserve(experiment.points.size());
+  for (std::size_t p = 0; p < experiment.points.size(); ++p) plan.point_params.push_back(resolve(p));
   plan.point_settings = experiment.points;
 
   for (const std::string& spec : experiment.references) {

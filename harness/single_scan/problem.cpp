@@ -1,5 +1,7 @@
 #include "harness/single_scan/problem.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 namespace dabench {
@@ -30,6 +32,21 @@ std::string SingleScanProblem::validate() const {
     }
   }
   return {};
+}
+
+double SingleScanProblem::largest_weight_sum() const {
+  double largest = 0.0;
+  Vector column = Vector::Ones(measurements());
+  for (int i = 0; i < targets(); ++i) {
+    double row = 1.0;
+    for (int j = 0; j < measurements(); ++j) {
+      const double w = normalized_weight(i, j);
+      row += w;
+      column[j] += w;
+    }
+    largest = std::max(largest, row);
+  }
+  return measurements() > 0 ? std::max(largest, column.maxCoeff()) : largest;
 }
 
 }  // namespace dabench

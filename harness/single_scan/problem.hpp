@@ -42,6 +42,12 @@ struct SingleScanProblem {
     return w;
   }
 
+  // max over targets and measurements of 1 + Σ ψ along the row or column (normalised weights):
+  // an approximation whose message sums can overflow refuses (skipped:numerical) from
+  // kOutOfRangeSum on (ψ near 1e308), since an overflowed sum gives wrong beliefs, not NaN.
+  double largest_weight_sum() const;
+  static constexpr double kOutOfRangeSum = 0x1p1020;
+
   // Empty if the problem is well formed, else what is wrong (negative, NaN or infinite
   // weights, side-weight vectors of the wrong size or not strictly positive).
   std::string validate() const;

@@ -261,11 +261,11 @@ TEST_CASE("experiment: errors throw InputError naming the file", "[experiment]")
   SECTION("a block of ties only") {
     CHECK(contains(error_for(std::string(kHeader) + "[sweep]\ncols = @rows\n"), "@rows"));
   }
-  SECTION("a sweep of more than a million points, counted before any is made") {
-    // 10^12 points in one block (two ranges of 10^6), and 2 · 600 000 over two blocks.
+  SECTION("a sweep of more than 10^5 points, counted before any is made") {
+    // 10^12 points in one block (two ranges of 10^6), and 2 · 60 000 over two blocks.
     CHECK(contains(error_for(std::string(kHeader) + "[sweep]\nrows = 1:1:1000000\ncols = 1:1:1000000\n"),
-                   "the sweep has 1e+12 points, more than 1000000"));
-    CHECK(contains(error_for(std::string(kHeader) + "[sweep.a]\nrows = 1:1:600000\n[sweep.b]\ncols = 1:1:600000\n"),
-                   "the sweep has 1.2e+06 points"));
+                   "the sweep has 1e+12 points, more than 100000"));
+    CHECK(contains(error_for(std::string(kHeader) + "[sweep.a]\nrows = 1:1:60000\n[sweep.b]\ncols = 1:1:60000\n"),
+                   "the sweep has 1.2e+05 points"));
   }
 }

@@ -401,6 +401,30 @@ TEST_CASE("bp: tiny delta with huge weights still terminates as converged", "[bp
   CHECK(result.report.iterations < 1000);
 }
 
+TEST_CASE("bp: weights near 1e308 are solved where no sum overflows, else refused", "[bp]") {
+  // Found by fuzz/fuzz_weights. A lone row 15, 1e308, 1e308, 7.5: its sum overflows, so the
+  // beliefs are normalised by the largest term first (p = 5e-309, 7.5e-308, ½, ½, 3.75e-308).
+  RowMatrix lone(1, 4);
+  lone << 15, 1e308, 1e308, 7.5;
+  const SolveResult solved = solve_bp(make_problem(lone), "bp");
+  CHECK(solved.marginals(0, 0) / 5e-309 == Approx(1.0).epsilon(1e-12));
+  CHECK(solved.marginals(0, 2) == Approx(0.5).epsilon(1e-15));
+  CHECK(solved.marginals(0, 3) == Approx(0.5).epsilon(1e-15));
+  CHECK(solved.marginals(0, 1) / 7.5e-308 == Approx(1.0).epsilon(1e-12));
+  // Two targets sharing a measurement of weight 1e308: the column sum of eq (21) overflows and
+  // the plain iteration would give p = 0, 1 (the truth is ½, ½); BP refuses instead.
+  for (const RowMatrix& psi : {RowMatrix(RowMatrix::Constant(2, 1, 1e308)),
+                               RowMatrix((RowMatrix(2, 3) << 1e308, 0, 1e308, 1e308, 1e308, 0).finished())}) {
+    auto solver = make_single_scan_solver("bp");
+    const SolveResult refused = run_solver(*solver, make_problem(psi));
+    CHECK(refused.report.skipped == "numerical");
+  }
+  // One order lower nothing overflows, and BP on this tree is exact: ½, ½.
+  const SolveResult tree = solve_bp(make_problem(RowMatrix::Constant(2, 1, 1e300)), "bp");
+  CHECK(tree.marginals(0, 1) == Approx(0.5).epsilon(1e-12));
+  CHECK(tree.marginals(1, 0) == Approx(0.5).epsilon(1e-12));
+}
+
 // ---------------------------------------------------------------------------------------------
 // Outputs and report fields.
 

@@ -469,3 +469,16 @@ TEST_CASE("fbp: a dominant pair leaves the rest of the problem to the reduced pr
     }
   }
 }
+
+TEST_CASE("fbp: weights whose row or column sum reaches 2^1020 are refused, not answered wrongly", "[fbp]") {
+  // Two targets sharing a measurement of weight 1e308 (fuzz/fuzz_weights): the sums overflow and
+  // the messages gave p = ½, ½ for one target and 1, 0 for the other. One order lower: ½, ½ both.
+  auto fbp = make_single_scan_solver("fbp");
+  SingleScanProblem problem;
+  problem.psi = RowMatrix::Constant(2, 1, 1e308);
+  CHECK(run_solver(*fbp, problem).report.skipped == "numerical");
+  problem.psi = RowMatrix::Constant(2, 1, 1e300);
+  const SolveResult solved = run_solver(*fbp, problem);
+  REQUIRE(solved.report.skipped.empty());
+  for (int i = 0; i < 2; ++i) CHECK(solved.marginals(i, 1) == Approx(0.5).epsilon(1e-9));
+}
