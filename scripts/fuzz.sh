@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets of fuzz/ (built in build-asan: AddressSanitizer + UBSan) for
-# SECONDS each over their committed seed corpus, fuzz/corpus/<target> (and experiments/ for the
-# experiment parser), and prints per target the inputs tried, the coverage and the corpus grown.
+# SECONDS each, FUZZ_JOBS at a time (default: one per core), over their committed seed corpus,
+# fuzz/corpus/<target> (and experiments/ for the experiment parser), and prints per target the
+# inputs tried, the coverage and the corpus grown.
 # A finding (a crash, a sanitizer report, an exception other than InputError, a timeout of 10 s,
 # more than 2 GiB) stops it with status 1 and keeps the input as build-asan/fuzz/<target>-crash-*;
 # reproduce with build-asan/fuzz/fuzz_<target> FILE.
@@ -28,13 +29,26 @@ bash scripts/sanitizer_build.sh build-asan "address;undefined" -DDABENCH_BUILD_F
 commit=$(git rev-parse --short=7 HEAD)$(git diff --quiet HEAD -- . ':!fuzz/long-runs.csv' ':!fuzz/corpus' || echo +changes)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-for target in "${targets[@]}"; do
-  seeds=("$root/fuzz/corpus/$target")
-  [ "$target" = experiment ] && seeds+=("$root/experiments")
+seeds_of() { echo "$root/fuzz/corpus/$1"; [ "$1" != experiment ] || echo "$root/experiments"; }
+# One target's run; its status goes to $work/<target>.status (0: no finding).
+fuzz_target() {
+  local target=$1
   mkdir -p "$work/$target"
+  local status=0
+  build-asan/fuzz/fuzz_$target -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$root/build-asan/fuzz/$target-" "$work/$target" $(seeds_of "$target") > "$work/$target.log" 2>&1 || status=$?
+  echo "$status" > "$work/$target.status"
+}
+# FUZZ_JOBS targets at a time (default: one per core), each for SECONDS.
+for target in "${targets[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "${FUZZ_JOBS:-$(nproc)}" ]; do wait -n || true; done
+  fuzz_target "$target" &
+done
+wait
+
+for target in "${targets[@]}"; do
   log="$work/$target.log"
-  if ! build-asan/fuzz/fuzz_$target -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-      -artifact_prefix="$root/build-asan/fuzz/$target-" "$work/$target" "${seeds[@]}" > "$log" 2>&1; then
+  if [ "$(cat "$work/$target.status")" != 0 ]; then
     grep -v "^#" "$log" | tail -40
     echo "fuzz: fuzz_$target found an input that fails (kept as build-asan/fuzz/$target-*)"
     exit 1
@@ -47,7 +61,7 @@ for target in "${targets[@]}"; do
   echo "fuzz: fuzz_$target: $runs inputs in $seconds s, no finding; $grown new inputs (cov $cov, ft $features)"
   if [ -n "${FUZZ_RECORD:-}" ]; then
     [ -s "$FUZZ_RECORD" ] || echo "date,commit,compiler,target,seconds,inputs,inputs_per_second,seed_inputs,new_inputs,edges,features,peak_rss_mb" > "$FUZZ_RECORD"
-    seed_count=$(find "${seeds[@]}" -maxdepth 1 -type f | wc -l)
+    seed_count=$(find $(seeds_of "$target") -maxdepth 1 -type f | wc -l)
     echo "$(date -u +%F),$commit,clang $(clang++-14 -dumpversion),$target,$seconds,$runs,$(stat average_exec_per_sec),$seed_count,$grown,$cov,$features,$(stat peak_rss_mb)" >> "$FUZZ_RECORD"
   fi
   if [ "${FUZZ_KEEP:-0}" = 1 ]; then

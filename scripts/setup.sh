@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs every build, test and plot dependency of dabench from Debian packages (clang-14 and
-# its runtimes for the sanitizer builds and libFuzzer targets of scripts/test_sanitizers.sh).
+# its runtimes and linker for the sanitizer builds and libFuzzer targets of scripts/test_sanitizers.sh).
 # Idempotent; run as root (or with sudo available). Nothing else is downloaded.
 set -euo pipefail
 packages=(
@@ -9,7 +9,7 @@ packages=(
   catch2 libbenchmark-dev
   libopenmpi-dev openmpi-bin
   python3-matplotlib python3-numpy python3-scipy
-  clang-14 libclang-rt-14-dev libomp-14-dev llvm-14
+  clang-14 libclang-rt-14-dev libomp-14-dev llvm-14 lld-14
 )
 missing=()
 for p in "${packages[@]}"; do

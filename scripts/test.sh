@@ -6,10 +6,17 @@
 # UBSan, the fuzz targets and the runner's tests under ThreadSanitizer (scripts/test_sanitizers.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
-bash scripts/build.sh
-(cd build && ctest -j"$(nproc)" --output-on-failure)
-DABENCH_PROGRESS=0 bash scripts/test_mpi.sh build
-bash scripts/test_faults.sh build
-bash scripts/test_outside_project.sh build
-bash scripts/test_sanitizers.sh
+step() {  # step NAME COMMAND...: runs it, then prints how long it took
+  local name=$1 start=$SECONDS
+  shift
+  "$@"
+  echo "test: $name took $(( (SECONDS - start) / 60 )) min $(( (SECONDS - start) % 60 )) s"
+}
+step setup bash scripts/setup.sh
+step build bash scripts/build.sh
+step ctest ctest --test-dir build -j"$(nproc)" --output-on-failure
+step test_mpi env DABENCH_PROGRESS=0 bash scripts/test_mpi.sh build
+step test_faults bash scripts/test_faults.sh build
+step test_outside_project bash scripts/test_outside_project.sh build
+step test_sanitizers bash scripts/test_sanitizers.sh
+echo "test: passed in $(( SECONDS / 60 )) min $(( SECONDS % 60 )) s"
