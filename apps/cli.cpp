@@ -1,6 +1,5 @@
 #include "apps/cli.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -24,6 +23,7 @@
 #include "harness/core/params.hpp"
 #include "harness/core/repeat_timing.hpp"
 #include "harness/multi_scan/registry.hpp"
+#include "harness/run/library.hpp"
 #include "harness/run/mpi_transport.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/run/shard_merge.hpp"
@@ -53,9 +53,10 @@ constexpr CommandUsage kListUsage{
     "Prints the algorithms and trackers with their parameters and defaults, the scenarios and the\n"
     "experiment files.\n"};
 constexpr CommandUsage kSolveUsage{
-    "dabench solve --algorithm SPEC --weights FILE [--format csv|json] [--pd P] [--lambda-fa L] [--time]",
+    "dabench solve --algorithm SPEC --weights FILE [--layout psi|stonesoup|tcl|matlab] [--log] [--format csv|json] [--pd P] [--lambda-fa L] [--time]",
     "Solves one single-scan problem: FILE is a headerless CSV of psi, one row per target and one\n"
-    "column per measurement; prints target,measurement,probability (measurement 0 = missed).\n"
+    "column per measurement (or another tracker's matrix: --layout); prints\n"
+    "target,measurement,probability (measurement 0 = missed).\n"
     "With --time, times the algorithm's calls on that problem instead (the same input repeatedly:\n"
     "warm caches) and prints algorithm,targets,measurements,solves,samples,batch,median_us,p10_us,\n"
     "p90_us,median_interval,stable (median_interval: half-width of the median's 95% interval over\n"
@@ -201,15 +202,7 @@ int command_list(int argc, char** argv) {
 // CSV or JSON on stdout, times in µs per solve.
 std::string timing_report(const std::string& spec, const std::string& format, SingleScanSolver& solver,
                           const SingleScanProblem& problem, const RepeatTimingOptions& options) {
-  MarginalTable marginals;
-  SolveReport report;
-  const RepeatTiming timing = time_repeatedly(
-      [&](long long calls) {
-        const auto start = std::chrono::steady_clock::now();
-        for (long long call = 0; call < calls; ++call) solver.solve(problem, marginals, report);
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      },
-      options);
+  const RepeatTiming timing = time_single_scan(solver, problem, options);
   const long long targets = problem.targets(), measurements = problem.measurements();
   if (format == "json") {
     JsonObject json;
@@ -236,13 +229,18 @@ std::string timing_report(const std::string& spec, const std::string& format, Si
 
 int command_solve(int argc, char** argv) {
   po::options_description options("solve options");
-  std::string spec, weights, format;
+  std::string spec, weights, format, layout;
   double pd = std::nan(""), lambda_fa = std::nan("");
-  bool time = false;
+  bool time = false, log_weights = false;
   RepeatTimingOptions timing;
   options.add_options()
       ("algorithm", po::value(&spec)->required(), "algorithm SPEC")
-      ("weights", po::value(&weights)->required(), "headerless CSV of psi, one row per target")
+      ("weights", po::value(&weights)->required(), "headerless CSV of psi, one row per target (or as --layout says)")
+      ("layout", po::value(&layout)->default_value("psi"),
+       "psi (n x m, missed weight 1 implied), stonesoup (n x (m+1), missed-detection column first, as pyehm), "
+       "tcl (n x (m+n), missed detections on a diagonal block) or matlab (jpdaEvents' (m+1) x (n+1): row 1 missed "
+       "detections, column 1 clutter)")
+      ("log", po::bool_switch(&log_weights), "the file holds natural logs of the weights (-inf for 0)")
       ("format", po::value(&format)->default_value("csv"), "csv or json")
       ("pd", po::value(&pd), "detection probability, for algorithms that need it")
       ("lambda-fa", po::value(&lambda_fa), "false-alarm density, for algorithms that need it")
@@ -266,7 +264,7 @@ int command_solve(int argc, char** argv) {
   if (timing.min_samples < 1) throw InputError(fmt::format("solve: --time-min-samples {} must be >= 1", timing.min_samples));
 
   auto solver = make_single_scan_solver(spec);
-  SingleScanProblem problem = read_weights_csv(weights);
+  SingleScanProblem problem = read_weights_csv(weights, {parse_weights_layout(layout), log_weights});
   problem.context.pd = pd;
   problem.context.lambda_fa = lambda_fa;
   MarginalTable marginals;

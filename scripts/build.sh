@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
-# Configures and builds dabench (Release, -O3) into ./build: the CLI, tests and benchmarks.
+# Configures and builds dabench (Release, -O3) into ./build: everything (the program and its MPI
+# module, the Python package build/python/dabench for Debian's /usr/bin/python3, the tests and the
+# benchmarks), or only the targets named, e.g. `scripts/build.sh dabench` (the program and its MPI module).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j"$(nproc)"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+targets=()
+for target in "$@"; do targets+=(--target "$target"); done
+cmake --build build -j"$(nproc)" "${targets[@]}"

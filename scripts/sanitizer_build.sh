@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Configures and builds a Clang 14 build folder with sanitizers (-O1 -g1, asserts on; -O1 compiles
-# in half -O2's time; no benchmarks, no MPI module), for scripts/test_sanitizers.sh and scripts/fuzz.sh.
+# in half -O2's time; no benchmarks, no MPI module, no Python module), for scripts/test_sanitizers.sh and scripts/fuzz.sh.
 # The libraries are unity builds (their files compiled in batches, each header parsed once per
 # batch) and programs link with lld: both only to build faster.
 # Usage: scripts/sanitizer_build.sh FOLDER SANITIZERS [CMAKE_OPTION...] [--target T...]
@@ -15,5 +15,5 @@ while [ $# -gt 0 ]; do
 done
 CC=clang-14 CXX=clang++-14 cmake -S . -B "$folder" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1" \
   -DDABENCH_SANITIZERS="$sanitizers" -DCMAKE_UNITY_BUILD=ON \
-  -DCMAKE_EXE_LINKER_FLAGS=--ld-path=/usr/bin/ld.lld-14 -DDABENCH_BUILD_BENCHMARKS=OFF -DDABENCH_WITH_MPI=OFF "${options[@]}" > /dev/null
+  -DCMAKE_EXE_LINKER_FLAGS=--ld-path=/usr/bin/ld.lld-14 -DDABENCH_BUILD_BENCHMARKS=OFF -DDABENCH_WITH_MPI=OFF -DDABENCH_BUILD_PYTHON=OFF "${options[@]}" > /dev/null
 cmake --build "$folder" -j"$(nproc)" "${targets[@]}" > "$folder/build.log" 2>&1 || { tail -40 "$folder/build.log"; exit 1; }

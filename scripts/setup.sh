@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every build, test and plot dependency of dabench from Debian packages (clang-14 and
-# its runtimes and linker for the sanitizer builds and libFuzzer targets of scripts/test_sanitizers.sh).
+# its runtimes and linker for the sanitizer builds and libFuzzer targets of scripts/test_sanitizers.sh;
+# pybind11, numpy, pandas and pytest for the Python module in python/).
 # Idempotent; run as root (or with sudo available). Nothing else is downloaded.
 set -euo pipefail
 packages=(
@@ -8,7 +9,7 @@ packages=(
   libeigen3-dev libboost-program-options-dev libfmt-dev
   catch2 libbenchmark-dev
   libopenmpi-dev openmpi-bin
-  python3-matplotlib python3-numpy python3-scipy
+  python3-matplotlib python3-numpy python3-scipy python3-pandas python3-pytest python3-dev pybind11-dev
   clang-14 libclang-rt-14-dev libomp-14-dev llvm-14 lld-14
 )
 missing=()

@@ -33,6 +33,12 @@ class Registry {
     const std::string name = entry.name;
     entries_.emplace(name, std::move(entry));
   }
+  // For entries made at run time (the Python module's register()): replaces one of the same name.
+  void replace(Entry entry) {
+    const std::string name = entry.name;
+    entries_.insert_or_assign(name, std::move(entry));
+  }
+  void remove(std::string_view name) { entries_.erase(std::string(name)); }
   const Entry* find(std::string_view name) const {
     const auto it = entries_.find(std::string(name));
     return it == entries_.end() ? nullptr : &it->second;

@@ -1,7 +1,10 @@
 #include "harness/run/library.hpp"
 
+#include <chrono>
 #include <exception>
 #include <utility>
+
+#include "harness/core/row_fields.hpp"
 
 namespace dabench {
 
@@ -24,11 +27,23 @@ SingleScanResult solve_single_scan(SingleScanSolver& solver, const SingleScanPro
   try {
     solver.solve(problem, result.marginals, result.report);
   } catch (const std::exception& error) {  // as the runner: a failed solve is a status
-    result.report.skipped = std::string("failed:") + error.what();
+    result.report.skipped = "failed:" + one_line(error.what());
   }
   reject_non_distribution(problem, result.marginals, result.report);
   if (!result.report.skipped.empty()) result.marginals = MarginalTable();
   return result;
+}
+
+RepeatTiming time_single_scan(SingleScanSolver& solver, const SingleScanProblem& problem, const RepeatTimingOptions& options) {
+  MarginalTable marginals;
+  SolveReport report;
+  return time_repeatedly(
+      [&](long long calls) {
+        const auto start = std::chrono::steady_clock::now();
+        for (long long call = 0; call < calls; ++call) solver.solve(problem, marginals, report);
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      },
+      options);
 }
 
 }  // namespace dabench

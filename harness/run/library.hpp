@@ -24,6 +24,7 @@
 #include "harness/core/errors.hpp"
 #include "harness/core/marginal_table.hpp"
 #include "harness/core/matrix_types.hpp"
+#include "harness/core/repeat_timing.hpp"
 #include "harness/core/solve_report.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/single_scan/problem.hpp"
@@ -56,6 +57,11 @@ SingleScanResult solve_single_scan(std::string_view spec, const SingleScanProble
 // Solves with a solver made once (make_single_scan_solver(spec), or a typed algorithm object),
 // e.g. to reuse its buffers over many problems. Throws InputError for an invalid problem.
 SingleScanResult solve_single_scan(SingleScanSolver& solver, const SingleScanProblem& problem);
+
+// Times `solver` on `problem` as `dabench solve --time` does: its calls alone, repeated on the
+// same input (warm caches) until the median is stable or the budget is spent
+// (harness/core/repeat_timing.hpp). `problem` has passed validate().
+RepeatTiming time_single_scan(SingleScanSolver& solver, const SingleScanProblem& problem, const RepeatTimingOptions& options);
 
 // Solves with a typed options struct: the algorithm class needs no registration, and
 // `options` is checked by its validate() exactly as a SPEC's values are (same InputError

@@ -71,7 +71,7 @@ void MultiScanExecution::run_item(MultiScanWorker& worker, long long item) const
     try {
       worker.solvers[a]->solve(problem, worker.beliefs[a], report);
     } catch (const std::exception& error) {  // e.g. std::bad_alloc: record it, go on
-      report.skipped = std::string("failed:") + error.what();
+      report.skipped = "failed:" + one_line(error.what());
     }
     worker.time_us[a] = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
     if (report.skipped.empty()) report.skipped = shape_error(problem, worker.beliefs[a]);

@@ -204,11 +204,12 @@ void run_block(const Execution& execution, Worker& worker, const RunPlan& plan, 
 }
 
 // Runs blocks from `queue` on this process's OpenMP threads (each with its own worker) and
-// hands each block's texts to the ordered writer; draws `progress` unless null. Returns the
-// threads' busy seconds.
+// hands each block's texts to the ordered writer; draws `progress` unless null and tells
+// `on_progress` unless empty. Returns the threads' busy seconds.
 template <class Execution>
 double run_local_blocks(const Execution& execution, const RunPlan& plan, const BlockLayout& layout, BlockQueue& queue,
-                        OrderedWriter& writer, std::atomic<long long>& items_finished, ProgressLine* progress) {
+                        OrderedWriter& writer, std::atomic<long long>& items_finished, ProgressLine* progress,
+                        const std::function<void(long long, long long)>& on_progress) {
   double busy_seconds = 0.0;
 #pragma omp parallel num_threads(plan.threads) reduction(+ : busy_seconds)
   {
@@ -220,9 +221,11 @@ double run_local_blocks(const Execution& execution, const RunPlan& plan, const B
       if (writer.failed()) g_interrupted = true;  // the first failed write stops the run
       worker.texts = std::vector<std::string>(files);
       items_finished += layout.end(*block) - layout.begin(*block);
+      const long long done = items_finished.load();
       if (progress != nullptr && (omp_get_thread_num() == 0 || blocks_written == layout.total_blocks())) {
-        progress->update(items_finished.load());
+        progress->update(done);
       }
+      if (on_progress) on_progress(done, layout.total_items);
     }
     busy_seconds += worker.busy_seconds;
   }
@@ -361,6 +364,8 @@ RunOutcome run_worker_rank(const RunOptions& options, const MpiTransport& mpi) {
 
 }  // namespace
 
+void interrupt_run() { g_interrupted = true; }
+
 RunOutcome run_experiment(const RunOptions& options) {
   const MpiTransport* mpi = options.transport;
   if (mpi != nullptr && mpi->rank() != 0) return run_worker_rank(options, *mpi);
@@ -432,17 +437,20 @@ RunOutcome run_experiment(const RunOptions& options) {
   }
   BlockQueue queue(first_block, layout.total_blocks());
   OrderedWriter writer(files, first_block);
-  ProgressLine progress(total_items, opened.items_done, mpi != nullptr ? progress_under_mpirun() : stderr_is_terminal());
+  ProgressLine progress(total_items, opened.items_done,
+                        options.draw_progress && (mpi != nullptr ? progress_under_mpirun() : stderr_is_terminal()));
 
   const InterruptHandlers handlers;
   const auto wall_start = Clock::now();
   std::atomic<long long> items_finished{opened.items_done};
   const double busy_seconds = with_execution(plan, [&](const auto& execution) {
-    if (mpi == nullptr) return run_local_blocks(execution, plan, layout, queue, writer, items_finished, &progress);
+    if (mpi == nullptr) {
+      return run_local_blocks(execution, plan, layout, queue, writer, items_finished, &progress, options.on_progress);
+    }
     std::atomic<bool> local_done{false};
     double local_busy = 0.0;
     std::thread local([&] {
-      local_busy = run_local_blocks(execution, plan, layout, queue, writer, items_finished, nullptr);
+      local_busy = run_local_blocks(execution, plan, layout, queue, writer, items_finished, nullptr, options.on_progress);
       local_done = true;
     });
     long long remote_threads = 0;

@@ -15,6 +15,7 @@
 // threads, and writes every rank's rows through the same ordered writer, so the files are
 // those of a single process. A worker rank writes nothing.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 #include <string>
@@ -41,6 +42,11 @@ struct RunOptions {
   std::optional<Shard> shard;           // run one shard (default output: the file's + "-shard-K-of-N")
   std::string command_line;             // recorded in meta.json
   const MpiTransport* transport = nullptr;  // under mpirun: this rank's link to the others
+  // For a caller's own progress display (the Python module's): the items done and the items of
+  // this process, called as blocks finish, from any of the run's threads. The progress line on
+  // stderr (drawn when stderr is a terminal) is left out when draw_progress is false.
+  std::function<void(long long done, long long total)> on_progress;
+  bool draw_progress = true;
 };
 
 struct RunOutcome {
@@ -57,6 +63,10 @@ struct RunOutcome {
 
 // Throws InputError for anything wrong before the run starts.
 RunOutcome run_experiment(const RunOptions& options);
+
+// Stops the run in progress as Ctrl-C does (the trials in flight finish; --resume completes it),
+// for a caller that runs run_experiment on another thread. No effect when no run is in progress.
+void interrupt_run();
 
 // Column names of the metrics in trials.csv, in order, for single-scan, multi-scan and
 // tracking runs.

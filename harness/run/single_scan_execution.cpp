@@ -57,7 +57,7 @@ void SingleScanExecution::run_item(SingleScanWorker& worker, long long item) con
     try {
       worker.solvers[a]->solve(problem, worker.marginals[a], report);
     } catch (const std::exception& error) {  // e.g. std::bad_alloc: record it, go on
-      report.skipped = std::string("failed:") + error.what();
+      report.skipped = "failed:" + one_line(error.what());
     }
     worker.time_us[a] = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
     reject_non_distribution(problem, worker.marginals[a], report);

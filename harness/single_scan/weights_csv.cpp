@@ -1,7 +1,6 @@
 #include "harness/single_scan/weights_csv.hpp"
 
 #include <charconv>
-#include <cmath>
 #include <fstream>
 #include <vector>
 
@@ -13,14 +12,14 @@
 
 namespace dabench {
 
-SingleScanProblem read_weights_csv(const std::string& path) {
+SingleScanProblem read_weights_csv(const std::string& path, const WeightsFormat& format) {
   check_input_file(path, "a weights file", kMaxWeightsBytes);
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("{}: cannot read weights file", path));
-  return parse_weights_csv(path, in);
+  return parse_weights_csv(path, in, format);
 }
 
-SingleScanProblem parse_weights_csv(const std::string& path, std::istream& in) {
+SingleScanProblem parse_weights_csv(const std::string& path, std::istream& in, const WeightsFormat& format) {
   std::vector<double> values;
   long long columns = -1;
   long long rows = 0;
@@ -49,12 +48,6 @@ SingleScanProblem parse_weights_csv(const std::string& path, std::istream& in) {
       if (field.empty() || ec != std::errc() || end != field.data() + field.size()) {
         throw InputError(fmt::format("{}:{}: column {}: '{}' is not a number", path, line_number, count, field));
       }
-      if (!std::isfinite(value)) {
-        throw InputError(fmt::format("{}:{}: column {}: weight {} is not finite", path, line_number, count, field));
-      }
-      if (value < 0.0) {
-        throw InputError(fmt::format("{}:{}: column {}: weight {} is negative", path, line_number, count, field));
-      }
       values.push_back(value);
       if (comma == std::string_view::npos) break;
       start = comma + 1;
@@ -66,9 +59,7 @@ SingleScanProblem parse_weights_csv(const std::string& path, std::istream& in) {
     ++rows;
   }
   if (rows == 0) throw InputError(fmt::format("{}: empty weights file (expected one row per target)", path));
-  SingleScanProblem problem;
-  problem.psi = Eigen::Map<const RowMatrix>(values.data(), rows, columns);
-  return problem;
+  return problem_from_weights(Eigen::Map<const RowMatrix>(values.data(), rows, columns), format, path);
 }
 
 }  // namespace dabench

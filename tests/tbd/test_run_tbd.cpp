@@ -120,8 +120,8 @@ TEST_CASE("run tbd: trials.csv, steps.csv, estimates.csv and frames.csv agree", 
     const std::string k = steps.at(r, "k");
     const auto& truth = points["truth/" + k];
     const auto& reported = points[steps.at(r, "algorithm") + "/" + k];
-    CHECK(number(steps, r, "n_objects") == truth.size());
-    CHECK(number(steps, r, "n_estimates") == reported.size());
+    CHECK(number(steps, r, "n_objects") == static_cast<double>(truth.size()));
+    CHECK(number(steps, r, "n_estimates") == static_cast<double>(reported.size()));
     CHECK(number(steps, r, "gospa") == Approx(brute_gospa(truth, reported)).margin(1e-9));
     ++checked;
   }
