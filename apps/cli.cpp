@@ -1,11 +1,13 @@
 #include "apps/cli.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -26,6 +28,7 @@
 #include "harness/run/library.hpp"
 #include "harness/run/mpi_transport.hpp"
 #include "harness/run/runner.hpp"
+#include "harness/run/schedule_simulation.hpp"
 #include "harness/run/shard_merge.hpp"
 #include "harness/run/shard_meta.hpp"
 #include "harness/single_scan/registry.hpp"
@@ -62,11 +65,20 @@ constexpr CommandUsage kSolveUsage{
     "p90_us,median_interval,stable (median_interval: half-width of the median's 95% interval over\n"
     "the median; the percentiles are of batch means when a batch holds several solves).\n"};
 constexpr CommandUsage kRunUsage{
-    "dabench run EXPERIMENT.ini [--trials N] [--threads T] [--seed S] [--out DIR] [--resume|--force] [--shard K/N]",
+    "dabench run EXPERIMENT.ini [--trials N] [--threads T] [--seed S] [--out DIR] [--resume|--force] [--shard K/N] [--costs-from DIR]",
     "Runs an experiment file and writes trials.csv, summary.csv and meta.json (and the kind's\n"
     "per-trial files) into its output folder. Ctrl-C stops after the trials in flight.\n"
     "With --shard K/N, runs only shard K of N (blocks of 8 trials, round robin) into its own\n"
-    "folder (default: the experiment's output + -shard-K-of-N); `dabench merge` joins them.\n"};
+    "folder (default: the experiment's output + -shard-K-of-N); `dabench merge` joins them.\n"
+    "With --costs-from DIR (a previous run of the same plan), the (trial, algorithm) units of a\n"
+    "multi-scan, tracking or track-before-detect run start longest first by their times there.\n"};
+constexpr CommandUsage kScheduleUsage{
+    "dabench schedule RUN_DIR [--workers 1,2,16,64,256] [--trials N] [--format table|csv]",
+    "Predicts the wall time of a finished run's work on W workers (threads of all ranks), simulated\n"
+    "over the run's own per-unit times: the runner's work queue, the 8-item blocks it replaced, and\n"
+    "the queue of a rerun with --costs-from. The times come from trials.csv (or a track-before-detect\n"
+    "report's runs.csv, or summary.csv's means per point and algorithm) and are the algorithms'\n"
+    "alone: drawing, metrics and writing come on top. With --trials N: the first N trials of each point.\n"};
 constexpr CommandUsage kMergeUsage{
     "dabench merge OUT SHARD_DIR... [--force]",
     "Joins the folders of `dabench run --shard K/N` (K = 1..N, same experiment, seed and trials)\n"
@@ -76,7 +88,7 @@ constexpr CommandUsage kMergeUsage{
 std::string program_usage() {
   std::string text = "usage: ";
   const char* indent = "";
-  for (const CommandUsage* usage : {&kListUsage, &kSolveUsage, &kRunUsage, &kMergeUsage}) {
+  for (const CommandUsage* usage : {&kListUsage, &kSolveUsage, &kRunUsage, &kMergeUsage, &kScheduleUsage}) {
     text += fmt::format("{}{}\n", indent, usage->synopsis);
     indent = "       ";
   }
@@ -330,7 +342,8 @@ int command_run_options(int argc, char** argv, const std::string& command_line, 
       ("out", po::value(&out), "output folder (overrides the file)")
       ("resume", po::bool_switch(&run.resume), "finish the run in the output folder")
       ("force", po::bool_switch(&run.force), "discard the run in the output folder")
-      ("shard", po::value(&shard), "K/N: run shard K of N into its own folder (for `dabench merge`)");
+      ("shard", po::value(&shard), "K/N: run shard K of N into its own folder (for `dabench merge`)")
+      ("costs-from", po::value<std::string>(), "folder of a previous run of the same plan: start its longest units first");
   po::positional_options_description positional;
   positional.add("experiment", 1);
   const auto parsed = parse_command("run", kRunUsage, options, positional, argc, argv);
@@ -351,6 +364,7 @@ int command_run_options(int argc, char** argv, const std::string& command_line, 
   }
   if (values.count("out")) run.output = out;
   if (values.count("shard")) run.shard = parse_shard(shard);
+  if (values.count("costs-from")) run.costs_from = values["costs-from"].as<std::string>();
 
   run.transport = mpi;
   const RunOutcome outcome = run_experiment(run);
@@ -412,6 +426,72 @@ int command_merge(int argc, char** argv, const std::string& command_line) {
   return 0;
 }
 
+std::vector<long long> parse_workers(const std::string& text) {
+  std::vector<long long> workers;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t end = std::min(text.find(',', at), text.size());
+    const std::string word = text.substr(at, end - at);
+    char* stop = nullptr;
+    const long long value = std::strtoll(word.c_str(), &stop, 10);
+    if (word.empty() || *stop != '\0' || value < 1 || value > 1000000) {
+      throw InputError(fmt::format("schedule: --workers '{}' must be a list of counts from 1 to 1000000, e.g. 16,64,256", text));
+    }
+    workers.push_back(value);
+    at = end + 1;
+  }
+  return workers;
+}
+
+int command_schedule(int argc, char** argv) {
+  po::options_description options("schedule options");
+  std::string folder, workers_text, format;
+  long long trials = -1;
+  options.add_options()
+      ("run", po::value(&folder)->required(), "folder of a finished run")
+      ("trials", po::value(&trials), "only the first N trials of each point")
+      ("workers", po::value(&workers_text)->default_value("1,2,16,64,256"), "worker counts, comma-separated")
+      ("format", po::value(&format)->default_value("table"), "table or csv");
+  po::positional_options_description positional;
+  positional.add("run", 1);
+  const auto parsed = parse_command("schedule", kScheduleUsage, options, positional, argc, argv);
+  if (!parsed) return 0;
+  if (format != "table" && format != "csv") throw InputError(fmt::format("schedule: --format must be table or csv, not '{}'", format));
+  const std::vector<long long> workers = parse_workers(workers_text);
+  if (parsed->count("trials") && trials < 1) throw InputError(fmt::format("schedule: --trials {} must be >= 1", trials));
+  const RunCosts costs = read_run_costs(folder, trials);
+  const double total = std::accumulate(costs.unit_seconds.begin(), costs.unit_seconds.end(), 0.0);
+  const double longest = *std::max_element(costs.unit_seconds.begin(), costs.unit_seconds.end());
+  std::string out;
+  if (format == "csv") {
+    out = "workers,units,total_s,longest_unit_s,bound_s,wall_s,work_fraction,blocks_wall_s,blocks_work_fraction,"
+          "known_wall_s,known_work_fraction\n";
+  } else {
+    out = fmt::format("{}{}: {} units ({} items x {}), {:.4g} s of algorithm time, longest unit {:.4g} s\n"
+                      "{:>8} {:>11} {:>11} {:>9} {:>10} {:>15} {:>10} {:>14}\n",
+                      costs.source, costs.from_means ? " (means per point and algorithm)" : "", costs.unit_seconds.size(),
+                      costs.items(), costs.parts, total, longest, "workers",
+                      "bound_s", "wall_s", "fraction", "wall/bound", "8-item blocks_s", "fraction", "costs known_s");
+  }
+  for (const long long w : workers) {
+    const double bound = schedule_lower_bound(costs, w);
+    const SchedulePrediction now = simulate_work_queue(costs, w);
+    const SchedulePrediction blocks = simulate_item_blocks(costs, w);
+    const SchedulePrediction known = simulate_work_queue(costs, w, true);
+    if (format == "csv") {
+      out += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", w, costs.unit_seconds.size(), total, longest, bound,
+                         now.wall_seconds, now.work_fraction, blocks.wall_seconds, blocks.work_fraction, known.wall_seconds,
+                         known.work_fraction);
+    } else {
+      out += fmt::format("{:>8} {:>11.4g} {:>11.4g} {:>9.3f} {:>10.3f} {:>15.4g} {:>10.3f} {:>14.4g}\n", w, bound,
+                         now.wall_seconds, now.work_fraction, now.wall_seconds / bound, blocks.wall_seconds,
+                         blocks.work_fraction, known.wall_seconds);
+    }
+  }
+  std::fputs(out.c_str(), stdout);
+  return 0;
+}
+
 }  // namespace
 
 int cli_main(int argc, char** argv) {
@@ -424,6 +504,7 @@ int cli_main(int argc, char** argv) {
       return command_run(argc - 1, argv + 1, joined_command_line(argc, argv), resume_command_line(argc, argv));
     }
     if (command == "merge") return command_merge(argc - 1, argv + 1, joined_command_line(argc, argv));
+    if (command == "schedule") return command_schedule(argc - 1, argv + 1);
     if (command == "-h" || command == "--help" || command == "help") {
       if (argc > 2) throw InputError(fmt::format("{}: unexpected argument '{}' (for a command's usage: dabench COMMAND --help)", command, argv[2]));
       std::fputs(program_usage().c_str(), stdout);
@@ -434,8 +515,8 @@ int cli_main(int argc, char** argv) {
       std::fputs(version_line().c_str(), stdout);
       return 0;
     }
-    throw InputError(command.empty() ? "missing command (list, solve, run or merge; see dabench --help)"
-                                     : fmt::format("unknown command '{}' (list, solve, run or merge; see dabench --help)", command));
+    throw InputError(command.empty() ? "missing command (list, solve, run, merge or schedule; see dabench --help)"
+                                     : fmt::format("unknown command '{}' (list, solve, run, merge or schedule; see dabench --help)", command));
   } catch (const InputError& error) {
     std::fprintf(stderr, "dabench: %s\n", printable(error.what()).c_str());
     return 2;

@@ -3,6 +3,7 @@
 #  - a small experiment of each problem kind under `mpirun -np 2` (1 thread per rank) and
 #    `-np 3` (2 threads per rank) writes the files of a single-process run (scripts/same_results.py:
 #    every CSV field but the timings; meta.json records ranks, threads per rank and hosts);
+#  - shards run under mpirun (`--shard K/N` of a multi-scan and a tracking run), merged, equal it too;
 #  - mpirun interrupted (SIGINT, as Ctrl-C) stops after the blocks in flight, says how to resume,
 #    and --resume under mpirun ends with the files of an uninterrupted run;
 #  - a rank killed mid-run aborts the job, and --resume loses nothing that was written;
@@ -96,6 +97,17 @@ for kind in single multi tracking tbd; do
   expect "$kind-np3 rank_threads" "$(meta_field $kind-np3 rank_threads)" "[2, 2, 2]"
   expect "$kind-np2 status" "$(meta_field $kind-np2 status)" '"complete"'
   echo "test_mpi: $kind: -np 2 and -np 3 equal the single-process run"
+done
+
+# Shards under mpirun: each shard's (item, algorithm) units spread over the ranks; merged, the
+# shards are the single-process run.
+for kind in multi tracking; do
+  for k in 1 2 3; do
+    quiet run.log "${mpirun[@]}" -np 2 "$dabench" run $kind.ini --shard $k/3 --out $kind-shard-$k --threads 2
+  done
+  quiet run.log "$dabench" merge $kind-merged $kind-shard-1 $kind-shard-2 $kind-shard-3
+  same $kind-1 $kind-merged
+  echo "test_mpi: $kind: 3 shards, each under mpirun -np 2, merged: equal to the single-process run"
 done
 
 # Long enough to interrupt (mpirun takes up to a second to pass a signal on): about 3 s on two cores.

@@ -1,12 +1,13 @@
 #pragma once
-// Appends blocks of rows to one or more files in block order while blocks finish in any order
-// (a reorder buffer). A block carries one text per file. Whenever blocks become ready, each
-// file in turn gets all of them (one fwrite per block) and is flushed before the next file is
-// written, so after a crash or Ctrl-C every file holds a prefix of whole blocks (its last line
-// may be cut; --resume trims it) and an earlier file never holds fewer blocks than a later one.
-// The first failed write (ENOSPC, EIO, EFBIG) cuts that file back to the blocks it held before
-// (the files should be unbuffered, so nothing of the failed write waits in a stdio buffer) and
-// ends all writing: failure() then names the file and the error.
+// Appends pieces of rows to one or more files in order while the pieces finish in any order (a
+// reorder buffer). A piece covers the positions [begin, end) of a sequence (the run's work units)
+// and carries one text per file. Whenever pieces become ready (they continue the written
+// prefix), each file in turn gets all of them (one fwrite per piece) and is flushed before the
+// next file is written, so after a crash or Ctrl-C every file holds a prefix of whole pieces (its
+// last line may be cut; --resume trims it) and an earlier file never holds fewer pieces than a
+// later one. The first failed write (ENOSPC, EIO, EFBIG) cuts that file back to the pieces it
+// held before (the files should be unbuffered, so nothing of the failed write waits in a stdio
+// buffer) and ends all writing: failure() then names the file and the error.
 #include <cstdio>
 #include <map>
 #include <mutex>
@@ -18,13 +19,13 @@ namespace dabench {
 
 class OrderedWriter {
  public:
-  // `files` stay owned by the caller; `next_block` is the first block still to be written.
-  OrderedWriter(std::vector<std::FILE*> files, long long next_block) : files_(std::move(files)), next_block_(next_block) {}
+  // `files` stay owned by the caller; `next` is the first position still to be written.
+  OrderedWriter(std::vector<std::FILE*> files, long long next) : files_(std::move(files)), next_(next) {}
 
-  // Thread-safe; texts[k] goes to files[k]. Returns the number of blocks written so far
-  // (including earlier runs' offset).
-  long long submit(long long block, std::vector<std::string>&& texts);
-  long long next_block() const { return next_block_; }
+  // Thread-safe; texts[k] goes to files[k]. Pieces must not overlap and must together cover the
+  // positions from `next` on. Returns the end of the written prefix (earlier runs' included).
+  long long submit(long long begin, long long end, std::vector<std::string>&& texts);
+  long long next() const;
 
   struct Failure {
     std::size_t file = 0;  // index into `files`
@@ -35,9 +36,13 @@ class OrderedWriter {
 
  private:
   std::vector<std::FILE*> files_;
-  long long next_block_;
+  long long next_;
   std::optional<Failure> failure_;
-  std::map<long long, std::vector<std::string>> pending_;
+  struct Piece {
+    long long end;
+    std::vector<std::string> texts;
+  };
+  std::map<long long, Piece> pending_;  // by begin
   mutable std::mutex mutex_;
 };
 

@@ -50,7 +50,8 @@ MultiScanWorker MultiScanExecution::make_worker() const {
   return worker;
 }
 
-void MultiScanExecution::run_item(MultiScanWorker& worker, long long item) const {
+void MultiScanExecution::run_item(MultiScanWorker& worker, long long item, std::size_t first_algorithm,
+                                  std::size_t end_algorithm) const {
   const auto point = static_cast<std::uint32_t>(item / plan_.trials);
   const auto trial = static_cast<std::uint32_t>(item % plan_.trials);
   const auto start = Clock::now();
@@ -59,7 +60,7 @@ void MultiScanExecution::run_item(MultiScanWorker& worker, long long item) const
   const MultiScanProblem& problem = worker.sample.problem;
   const int n = problem.tracks();
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (std::size_t a = 0; a < worker.solvers.size(); ++a) {
+  for (std::size_t a = first_algorithm; a < end_algorithm; ++a) {
     SolveReport& report = worker.reports[a];
     report.reset();
     worker.time_us[a] = nan;
@@ -82,7 +83,7 @@ void MultiScanExecution::run_item(MultiScanWorker& worker, long long item) const
   for (const ScanFactors& scan : problem.scans) measurements += scan.measurements;
   std::string& targets = worker.texts[0];
   std::string& trials = worker.texts[1];
-  for (std::size_t a = 0; a < worker.solvers.size(); ++a) {
+  for (std::size_t a = first_algorithm; a < end_algorithm; ++a) {
     const SolveReport& report = worker.reports[a];
     const bool ok = report.skipped.empty();
     double hpd_sum = 0.0, hpd_max = nan, entropy_sum = 0.0;

@@ -31,7 +31,8 @@ class MultiScanExecution {
  public:
   MultiScanExecution(const RunPlan& plan, std::vector<std::unique_ptr<MultiScanScenario>> scenarios);
   MultiScanWorker make_worker() const;
-  void run_item(MultiScanWorker& worker, long long item) const;
+  // Runs algorithms [first_algorithm, end_algorithm) of the plan on the item's draw: their rows.
+  void run_item(MultiScanWorker& worker, long long item, std::size_t first_algorithm, std::size_t end_algorithm) const;
 
  private:
   const RunPlan& plan_;

@@ -73,41 +73,59 @@ std::string encode(const Hello& hello) {
   return pack_fields({hello.host, hello.fingerprint, std::to_string(hello.threads), hello.error});
 }
 
-std::string encode(const Start& start) {
-  return pack_fields({start.error, std::to_string(start.first_block), std::to_string(start.skip_in_first)});
-}
+std::string encode(const Start& start) { return pack_fields({start.error}); }
 
-std::string encode(const BlockResult& result) {
-  std::vector<std::string> fields = {std::to_string(result.block), result.interrupted ? "1" : "0",
-                                     std::string(sizeof(double), '\0')};
-  std::memcpy(fields[2].data(), &result.busy_seconds, sizeof(double));  // exact, same machine type everywhere
+std::string encode(const ChunkResult& result) {
+  std::vector<std::string> fields = {result.chunk ? std::to_string(result.chunk->begin) : "-1",
+                                     result.chunk ? std::to_string(result.chunk->end) : "-1",
+                                     result.interrupted ? "1" : "0", std::string(sizeof(double), '\0'),
+                                     std::string(sizeof(double) * result.unit_seconds.size(), '\0')};
+  // Doubles as their bytes: exact, and every rank is the same machine type.
+  std::memcpy(fields[3].data(), &result.busy_seconds, sizeof(double));
+  if (!result.unit_seconds.empty()) std::memcpy(fields[4].data(), result.unit_seconds.data(), fields[4].size());
   fields.insert(fields.end(), result.texts.begin(), result.texts.end());
   return pack_fields(fields);
 }
 
-std::string encode_block(long long block) { return pack_fields({std::to_string(block)}); }
+std::string encode_chunk(const std::optional<WorkChunk>& chunk) {
+  return chunk ? pack_fields({std::to_string(chunk->begin), std::to_string(chunk->end)}) : pack_fields({"-1", "-1"});
+}
 
 Hello decode_hello(std::string_view message) {
   const auto fields = fields_of(message, 4, "hello");
   return Hello{fields[0], fields[1], static_cast<int>(to_integer(fields[2])), fields[3]};
 }
 
-Start decode_start(std::string_view message) {
-  const auto fields = fields_of(message, 3, "start");
-  return Start{fields[0], to_integer(fields[1]), to_integer(fields[2])};
-}
+Start decode_start(std::string_view message) { return Start{fields_of(message, 1, "start")[0]}; }
 
-BlockResult decode_block_result(std::string_view message) {
-  auto fields = fields_of(message, 3, "block result");
-  BlockResult result;
-  result.block = to_integer(fields[0]);
-  result.interrupted = fields[1] == "1";
-  if (fields[2].size() != sizeof(double)) throw std::runtime_error("rank message: bad busy time");
-  std::memcpy(&result.busy_seconds, fields[2].data(), sizeof(double));
-  result.texts.assign(std::make_move_iterator(fields.begin() + 3), std::make_move_iterator(fields.end()));
+namespace {
+// A chunk's two fields: none for (-1, -1), else 0 <= begin < end.
+std::optional<WorkChunk> chunk_of(const std::string& begin_field, const std::string& end_field) {
+  const long long begin = to_integer(begin_field), end = to_integer(end_field);
+  if (begin == -1 && end == -1) return std::nullopt;
+  if (begin < 0 || end <= begin) throw std::runtime_error(fmt::format("rank message: bad chunk [{}, {})", begin, end));
+  return WorkChunk{begin, end};
+}
+}  // namespace
+
+ChunkResult decode_chunk_result(std::string_view message) {
+  auto fields = fields_of(message, 5, "chunk result");
+  ChunkResult result;
+  result.chunk = chunk_of(fields[0], fields[1]);
+  result.interrupted = fields[2] == "1";
+  if (fields[3].size() != sizeof(double)) throw std::runtime_error("rank message: bad busy time");
+  std::memcpy(&result.busy_seconds, fields[3].data(), sizeof(double));
+  const std::size_t units = result.chunk ? static_cast<std::size_t>(result.chunk->end - result.chunk->begin) : 0;
+  if (fields[4].size() != units * sizeof(double)) throw std::runtime_error("rank message: bad unit times");
+  result.unit_seconds.resize(units);
+  if (units > 0) std::memcpy(result.unit_seconds.data(), fields[4].data(), fields[4].size());
+  result.texts.assign(std::make_move_iterator(fields.begin() + 5), std::make_move_iterator(fields.end()));
   return result;
 }
 
-long long decode_block(std::string_view message) { return to_integer(fields_of(message, 1, "block")[0]); }
+std::optional<WorkChunk> decode_chunk(std::string_view message) {
+  const auto fields = fields_of(message, 2, "chunk");
+  return chunk_of(fields[0], fields[1]);
+}
 
 }  // namespace dabench

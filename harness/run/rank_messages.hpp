@@ -4,18 +4,21 @@
 // 8-byte little-endian integers). The exchange:
 //   worker → rank 0, tag kHelloTag: a Hello, once, after reading the experiment;
 //   rank 0 → worker, tag kStartTag: a Start, once, after opening the output folder;
-//   worker thread t → rank 0, tag t: a BlockResult, both a request for a block and the rows of
-//     the block it finished (if any); each thread keeps two requests in flight;
-//   rank 0 → worker thread t, tag t: the block to run next (kNoBlock: stop), one per request.
+//   worker thread t → rank 0, tag t: a ChunkResult, both a request for a chunk of work units and
+//     the rows and unit times of the chunk it finished (if any); each thread keeps two requests
+//     in flight;
+//   rank 0 → worker thread t, tag t: the chunk to run next (none: stop), one per request.
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "harness/run/work_queue.hpp"
 
 namespace dabench {
 
 constexpr int kHelloTag = 30000;  // above every thread tag (threads ≤ 1024), below MPI's 32767 minimum
 constexpr int kStartTag = 30001;
-constexpr long long kNoBlock = -1;
 
 std::string pack_fields(const std::vector<std::string>& fields);
 std::vector<std::string> unpack_fields(std::string_view message);  // throws std::runtime_error if malformed
@@ -28,25 +31,24 @@ struct Hello {
 };
 
 struct Start {
-  std::string error;        // rank 0's InputError (workers then stop), or ""
-  long long first_block = 0;
-  long long skip_in_first = 0;  // items of first_block already written (--resume)
+  std::string error;  // rank 0's InputError (workers then stop), or ""
 };
 
-struct BlockResult {
-  long long block = kNoBlock;  // the block these texts belong to; kNoBlock: only a request
-  bool interrupted = false;    // the sender was interrupted (SIGINT/SIGTERM)
-  double busy_seconds = 0.0;   // the sending thread's busy time so far
-  std::vector<std::string> texts;  // one per output file
+struct ChunkResult {
+  std::optional<WorkChunk> chunk;  // the units these texts belong to; none: only a request
+  bool interrupted = false;        // the sender was interrupted (SIGINT/SIGTERM)
+  double busy_seconds = 0.0;       // the sending thread's busy time so far
+  std::vector<double> unit_seconds;  // each unit's time, in order
+  std::vector<std::string> texts;    // one per output file
 };
 
 std::string encode(const Hello& hello);
 std::string encode(const Start& start);
-std::string encode(const BlockResult& result);
-std::string encode_block(long long block);
+std::string encode(const ChunkResult& result);
+std::string encode_chunk(const std::optional<WorkChunk>& chunk);
 Hello decode_hello(std::string_view message);
 Start decode_start(std::string_view message);
-BlockResult decode_block_result(std::string_view message);
-long long decode_block(std::string_view message);
+ChunkResult decode_chunk_result(std::string_view message);
+std::optional<WorkChunk> decode_chunk(std::string_view message);
 
 }  // namespace dabench

@@ -28,10 +28,9 @@ struct ItemFile {
   std::string header;  // with its newline
 };
 
-// Items are handed to threads in blocks: large enough that scheduling and the ordered write
-// cost little, small enough that an interrupted run loses little. Shards are made of the same
-// blocks: shard K of N runs blocks K − 1, K − 1 + N, K − 1 + 2N, ... (round robin, so every
-// shard gets a share of each sweep point's cost).
+// Shards are made of blocks of items: shard K of N runs blocks K − 1, K − 1 + N, K − 1 + 2N, ...
+// (round robin, so every shard gets a share of each sweep point's cost). Inside a process, the
+// order units run in is harness/run/work_queue.hpp's.
 constexpr long long kItemsPerBlock = 8;
 
 struct RunPlan {
@@ -48,6 +47,9 @@ struct RunPlan {
   std::optional<Shard> shard;  // run only this shard's items
 
   long long items() const { return static_cast<long long>(point_params.size()) * trials; }
+  // Work units per item (harness/run/work_queue.hpp): 1 for single scan, whose algorithms share the
+  // reference's marginals; one per algorithm for the other kinds, whose algorithms are independent.
+  int parts() const { return kind == RunKind::single_scan ? 1 : static_cast<int>(specs.size()); }
   // The items this process runs, in item order: all of them, or its shard's. Its item `local`
   // (0-based, < shard_items()) is the plan's item global_item(local).
   long long shard_items() const;

@@ -17,6 +17,7 @@
 #include <optional>
 #include <set>
 #include <thread>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -34,9 +35,11 @@
 #include "harness/run/run_folder.hpp"
 #include "harness/run/run_meta.hpp"
 #include "harness/run/run_plan.hpp"
+#include "harness/run/schedule_simulation.hpp"
 #include "harness/run/single_scan_execution.hpp"
 #include "harness/run/tbd_execution.hpp"
 #include "harness/run/tracking_execution.hpp"
+#include "harness/run/work_queue.hpp"
 #include "harness/single_scan/marginal_errors.hpp"
 #include "harness/single_scan/registry.hpp"
 #include "harness/tbd/registry.hpp"
@@ -108,34 +111,52 @@ class InterruptHandlers {
   void (*previous_term_)(int) = nullptr;
 };
 
-// This process's items (RunPlan::shard_items) in blocks of kItemsPerBlock; blocks before
-// first_block are written, and so are the first skip_in_first items of first_block (--resume
-// points are whole items; block boundaries stay item multiples).
-struct BlockLayout {
-  long long first_block = 0;
-  long long skip_in_first = 0;
-  long long total_items = 0;
-
-  long long total_blocks() const { return (total_items + kItemsPerBlock - 1) / kItemsPerBlock; }
-  long long begin(long long block) const { return block * kItemsPerBlock + (block == first_block ? skip_in_first : 0); }
-  long long end(long long block) const { return std::min(total_items, (block + 1) * kItemsPerBlock); }
-};
-
-// Hands out the blocks still to run, in order, to whichever thread (or rank) asks first;
-// none once interrupted.
-class BlockQueue {
- public:
-  BlockQueue(long long first_block, long long total_blocks) : next_(first_block), total_(total_blocks) {}
-  std::optional<long long> take() {
-    if (g_interrupted) return std::nullopt;
-    const long long block = next_.fetch_add(1);
-    return block < total_ ? std::optional<long long>(block) : std::nullopt;
+// Per unit of this process, its time in the run in `folder` (--costs-from), which must be of the
+// same points, trials and algorithms. InputError otherwise, or for a single-scan plan.
+std::vector<double> unit_predictions(const RunPlan& plan, const std::string& folder) {
+  if (plan.kind == RunKind::single_scan) {
+    throw InputError("run: --costs-from orders the (item, algorithm) units of multi-scan, tracking and "
+                     "track-before-detect runs; single-scan items run in order");
   }
+  const RunCosts costs = read_run_costs(folder);
+  if (costs.from_means || costs.items() != plan.items() || costs.parts != plan.parts()) {
+    throw InputError(fmt::format("run: --costs-from {}: {} holds {} items of {} algorithms{}, this run {} of {}", folder,
+                                 costs.source, costs.items(), costs.parts, costs.from_means ? " (means only)" : "",
+                                 plan.items(), plan.parts()));
+  }
+  std::vector<double> predictions(static_cast<std::size_t>(plan.shard_items() * plan.parts()));
+  for (std::size_t unit = 0; unit < predictions.size(); ++unit) {
+    const long long item = plan.global_item(static_cast<long long>(unit) / plan.parts());
+    predictions[unit] = costs.unit_seconds[static_cast<std::size_t>(item * plan.parts()) + unit % static_cast<std::size_t>(plan.parts())];
+  }
+  return predictions;
+}
 
- private:
-  std::atomic<long long> next_;
-  long long total_;
-};
+// The next chunk of units for a thread or rank that asks (harness/run/work_queue.hpp); none
+// once interrupted.
+std::optional<WorkChunk> take_chunk(WorkQueue& queue) {
+  if (g_interrupted) return std::nullopt;
+  return queue.take();
+}
+
+// The queue of this process's units [first_unit, total_units) for `workers` threads in all:
+// single-scan items in order (their algorithms share the reference), the other kinds' (item,
+// algorithm) units longest first, predicted by `predictions` (per unit of this process) if any.
+WorkQueue make_work_queue(const RunPlan& plan, long long first_unit, long long workers, std::vector<double> predictions) {
+  WorkQueueOptions options;
+  options.unit_predictions = std::move(predictions);
+  options.parts = plan.parts();
+  options.workers = workers;
+  options.order = plan.kind == RunKind::single_scan ? WorkOrder::in_order : WorkOrder::longest_first;
+  if (options.order == WorkOrder::longest_first) {
+    options.points = static_cast<int>(plan.point_params.size());
+    options.item_points.resize(static_cast<std::size_t>(plan.shard_items()));
+    for (long long local = 0; local < plan.shard_items(); ++local) {
+      options.item_points[static_cast<std::size_t>(local)] = static_cast<int>(plan.global_item(local) / plan.trials);
+    }
+  }
+  return WorkQueue(first_unit, plan.shard_items() * plan.parts(), std::move(options));
+}
 
 // Whether rank 0 of an mpirun job draws the progress line: Open MPI hands the ranks a pipe for
 // stderr (never a terminal) and a pseudo-terminal for stdout, so stdout stands in for it;
@@ -196,48 +217,62 @@ double with_execution(const RunPlan& plan, Body&& body) {
   return body(SingleScanExecution(plan, std::move(scenarios)));
 }
 
-// Runs one block's items into worker.texts (cleared first).
+// Runs a chunk's units into worker.texts (cleared first) and their times into unit_seconds.
 template <class Execution, class Worker>
-void run_block(const Execution& execution, Worker& worker, const RunPlan& plan, const BlockLayout& layout, long long block) {
+void run_chunk(const Execution& execution, Worker& worker, const RunPlan& plan, WorkChunk chunk,
+               std::vector<double>& unit_seconds) {
   for (std::string& text : worker.texts) text.clear();
-  for (long long item = layout.begin(block); item < layout.end(block); ++item) execution.run_item(worker, plan.global_item(item));
+  unit_seconds.clear();
+  const long long parts = plan.parts();
+  for (long long unit = chunk.begin; unit < chunk.end; ++unit) {
+    const auto start = Clock::now();
+    const long long item = plan.global_item(unit / parts);
+    if constexpr (std::is_same_v<Execution, SingleScanExecution>) {
+      execution.run_item(worker, item);
+    } else {
+      const auto part = static_cast<std::size_t>(unit % parts);
+      execution.run_item(worker, item, part, part + 1);
+    }
+    unit_seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+  }
 }
 
-// Runs blocks from `queue` on this process's OpenMP threads (each with its own worker) and
-// hands each block's texts to the ordered writer; draws `progress` unless null and tells
-// `on_progress` unless empty. Returns the threads' busy seconds.
+// Runs chunks from `queue` on this process's OpenMP threads (each with its own worker) and
+// hands each chunk's texts to the ordered writer; draws `progress` unless null and tells
+// `on_progress` unless empty (in items). Returns the threads' busy seconds.
 template <class Execution>
-double run_local_blocks(const Execution& execution, const RunPlan& plan, const BlockLayout& layout, BlockQueue& queue,
-                        OrderedWriter& writer, std::atomic<long long>& items_finished, ProgressLine* progress,
+double run_local_chunks(const Execution& execution, const RunPlan& plan, WorkQueue& queue, OrderedWriter& writer,
+                        std::atomic<long long>& units_finished, ProgressLine* progress,
                         const std::function<void(long long, long long)>& on_progress) {
+  const long long parts = plan.parts();
+  const long long total_units = plan.shard_items() * parts;
   double busy_seconds = 0.0;
 #pragma omp parallel num_threads(plan.threads) reduction(+ : busy_seconds)
   {
     auto worker = execution.make_worker();
     const std::size_t files = worker.texts.size();
-    while (const auto block = queue.take()) {
-      run_block(execution, worker, plan, layout, *block);
-      const long long blocks_written = writer.submit(*block, std::move(worker.texts));
+    std::vector<double> unit_seconds;
+    while (const auto chunk = take_chunk(queue)) {
+      run_chunk(execution, worker, plan, *chunk, unit_seconds);
+      for (long long unit = chunk->begin; unit < chunk->end; ++unit) queue.finished(unit, unit_seconds[unit - chunk->begin]);
+      const long long written = writer.submit(chunk->begin, chunk->end, std::move(worker.texts));
       if (writer.failed()) g_interrupted = true;  // the first failed write stops the run
       worker.texts = std::vector<std::string>(files);
-      items_finished += layout.end(*block) - layout.begin(*block);
-      const long long done = items_finished.load();
-      if (progress != nullptr && (omp_get_thread_num() == 0 || blocks_written == layout.total_blocks())) {
-        progress->update(done);
-      }
-      if (on_progress) on_progress(done, layout.total_items);
+      const long long done = (units_finished += chunk->end - chunk->begin) / parts;
+      if (progress != nullptr && (omp_get_thread_num() == 0 || written == total_units)) progress->update(done);
+      if (on_progress) on_progress(done, plan.shard_items());
     }
     busy_seconds += worker.busy_seconds;
   }
   return busy_seconds;
 }
 
-// A worker rank's threads: each asks rank 0 for blocks (two requests in flight, so the answer
-// to the next is there when it finishes a block), runs them and sends their rows back with
-// its next request, until rank 0 answers kNoBlock (then every later answer is kNoBlock too).
+// A worker rank's threads: each asks rank 0 for chunks (two requests in flight, so the answer
+// to the next is there when it finishes a chunk), runs them and sends their rows and unit times
+// back with its next request, until rank 0 answers "none" (then every later answer is none too).
 // Threads call MPI one at a time (MPI_THREAD_SERIALIZED) and wait for answers by polling.
 template <class Execution>
-void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLayout& layout, const MpiTransport& mpi) {
+void serve_chunks(const Execution& execution, const RunPlan& plan, const MpiTransport& mpi) {
 #pragma omp parallel num_threads(plan.threads)
   {
     if (omp_get_num_threads() != plan.threads) {  // rank 0 counts on plan.threads requesters
@@ -251,13 +286,13 @@ void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLa
     auto worker = execution.make_worker();
     const std::size_t files = worker.texts.size();
     const int tag = omp_get_thread_num();
-    const auto send = [&](const BlockResult& result) {
+    const auto send = [&](const ChunkResult& result) {
       const std::string message = encode(result);
 #pragma omp critical(dabench_mpi)
       mpi.send(0, tag, message);
     };
-    send(BlockResult{});
-    send(BlockResult{});
+    send(ChunkResult{});
+    send(ChunkResult{});
     int in_flight = 2;
     while (in_flight > 0) {
       std::string answer;
@@ -273,13 +308,13 @@ void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLa
         idle.wait();
       }
       --in_flight;
-      const long long block = decode_block(answer);
-      if (block == kNoBlock) continue;
-      BlockResult result;
+      const std::optional<WorkChunk> chunk = decode_chunk(answer);
+      if (!chunk) continue;
+      ChunkResult result;
       result.interrupted = g_interrupted.load();
-      if (!result.interrupted) {  // else the block is left to --resume
-        run_block(execution, worker, plan, layout, block);
-        result.block = block;
+      if (!result.interrupted) {  // else the chunk is left to --resume
+        run_chunk(execution, worker, plan, *chunk, result.unit_seconds);
+        result.chunk = chunk;
         result.texts = std::move(worker.texts);
         worker.texts = std::vector<std::string>(files);
       }
@@ -290,34 +325,37 @@ void serve_blocks(const Execution& execution, const RunPlan& plan, const BlockLa
   }
 }
 
-// Rank 0's main thread while its own threads run blocks (until local_done): answers the other
-// ranks' requests for blocks from `queue`, hands their rows to the writer and draws the
-// progress line for the whole job. Returns the remote threads' busy seconds.
-double coordinate(const MpiTransport& mpi, long long remote_threads, BlockQueue& queue, const BlockLayout& layout,
-                  OrderedWriter& writer, std::atomic<long long>& items_finished, ProgressLine& progress,
+// Rank 0's main thread while its own threads run chunks (until local_done): answers the other
+// ranks' requests for chunks from `queue`, hands their rows to the writer and their unit times
+// to the queue, and draws the progress line for the whole job. Returns the remote threads' busy
+// seconds.
+double coordinate(const MpiTransport& mpi, long long remote_threads, WorkQueue& queue, long long parts,
+                  OrderedWriter& writer, std::atomic<long long>& units_finished, ProgressLine& progress,
                   const std::atomic<bool>& local_done) {
   std::map<std::pair<int, int>, double> busy_seconds;  // by (rank, thread)
-  long long stops_to_send = 2 * remote_threads;       // every remote thread stops after two kNoBlock
+  long long stops_to_send = 2 * remote_threads;       // every remote thread stops after two "none"
   IdleWait idle;
   while (stops_to_send > 0 || !local_done.load()) {
-    progress.update(items_finished.load());
+    progress.update(units_finished.load() / parts);
     const auto envelope = mpi.probe(-1, -1);
     if (!envelope) {
       idle.wait();
       continue;
     }
     idle = IdleWait{};
-    BlockResult result = decode_block_result(mpi.receive(*envelope));
+    ChunkResult result = decode_chunk_result(mpi.receive(*envelope));
     if (result.interrupted) g_interrupted = true;  // one rank's Ctrl-C stops the job
     busy_seconds[{envelope->source, envelope->tag}] = result.busy_seconds;
-    if (result.block != kNoBlock) {
-      items_finished += layout.end(result.block) - layout.begin(result.block);
-      writer.submit(result.block, std::move(result.texts));
+    if (result.chunk) {
+      const WorkChunk& chunk = *result.chunk;
+      for (long long unit = chunk.begin; unit < chunk.end; ++unit) queue.finished(unit, result.unit_seconds[unit - chunk.begin]);
+      units_finished += chunk.end - chunk.begin;
+      writer.submit(chunk.begin, chunk.end, std::move(result.texts));
       if (writer.failed()) g_interrupted = true;
     }
-    const auto next = queue.take();
+    const auto next = take_chunk(queue);
     if (!next) --stops_to_send;
-    mpi.send(envelope->source, envelope->tag, encode_block(next.value_or(kNoBlock)));
+    mpi.send(envelope->source, envelope->tag, encode_chunk(next));
   }
   double total = 0.0;
   for (const auto& [thread, seconds] : busy_seconds) total += seconds;
@@ -332,7 +370,7 @@ std::vector<Hello> receive_hellos(const MpiTransport& mpi) {
 }
 
 // A rank other than 0: reads the experiment, greets rank 0, waits for the start, then runs the
-// blocks rank 0 hands it. Its InputErrors are reported by rank 0.
+// chunks rank 0 hands it. Its InputErrors are reported by rank 0.
 RunOutcome run_worker_rank(const RunOptions& options, const MpiTransport& mpi) {
   Hello hello;
   hello.host = host_name();
@@ -350,13 +388,12 @@ RunOutcome run_worker_rank(const RunOptions& options, const MpiTransport& mpi) {
   if (!start.error.empty()) throw InputError(start.error);
 
   const InterruptHandlers handlers;
-  const BlockLayout layout{start.first_block, start.skip_in_first, plan->shard_items()};
   with_execution(*plan, [&](const auto& execution) {
-    serve_blocks(execution, *plan, layout, mpi);
+    serve_chunks(execution, *plan, mpi);
     return 0.0;
   });
   RunOutcome outcome;
-  outcome.items_total = layout.total_items;
+  outcome.items_total = plan->shard_items();
   outcome.output = plan->output;
   outcome.worker_rank = true;
   return outcome;
@@ -396,6 +433,15 @@ RunOutcome run_experiment(const RunOptions& options) {
                           k + 1, hello.host);
     }
   }
+  std::vector<double> predictions;
+  if (error.empty() && options.costs_from) {
+    try {
+      predictions = unit_predictions(*checked_plan, *options.costs_from);
+    } catch (const InputError& costs_error) {
+      if (mpi == nullptr) throw;
+      error = costs_error.what();
+    }
+  }
   if (!error.empty()) throw stop_workers(error);
   const RunPlan& plan = *checked_plan;
 
@@ -430,34 +476,32 @@ RunOutcome run_experiment(const RunOptions& options) {
   write_file_atomically(meta_path(plan), run_meta_json(plan, record));
 
   const long long total_items = plan.shard_items();
-  const long long first_block = opened.items_done / kItemsPerBlock;
-  const BlockLayout layout{first_block, opened.items_done - first_block * kItemsPerBlock, total_items};
-  for (std::size_t k = 0; k < hellos.size(); ++k) {
-    mpi->send(static_cast<int>(k) + 1, kStartTag, encode(Start{"", layout.first_block, layout.skip_in_first}));
-  }
-  BlockQueue queue(first_block, layout.total_blocks());
-  OrderedWriter writer(files, first_block);
+  const long long parts = plan.parts();
+  const long long first_unit = opened.items_done * parts;
+  for (std::size_t k = 0; k < hellos.size(); ++k) mpi->send(static_cast<int>(k) + 1, kStartTag, encode(Start{""}));
+  long long workers = plan.threads;
+  for (const Hello& hello : hellos) workers += hello.threads;
+  WorkQueue queue = make_work_queue(plan, first_unit, workers, std::move(predictions));
+  OrderedWriter writer(files, first_unit);
   ProgressLine progress(total_items, opened.items_done,
                         options.draw_progress && (mpi != nullptr ? progress_under_mpirun() : stderr_is_terminal()));
 
   const InterruptHandlers handlers;
   const auto wall_start = Clock::now();
-  std::atomic<long long> items_finished{opened.items_done};
+  std::atomic<long long> units_finished{first_unit};
   const double busy_seconds = with_execution(plan, [&](const auto& execution) {
-    if (mpi == nullptr) {
-      return run_local_blocks(execution, plan, layout, queue, writer, items_finished, &progress, options.on_progress);
-    }
+    if (mpi == nullptr) return run_local_chunks(execution, plan, queue, writer, units_finished, &progress, options.on_progress);
     std::atomic<bool> local_done{false};
     double local_busy = 0.0;
     std::thread local([&] {
-      local_busy = run_local_blocks(execution, plan, layout, queue, writer, items_finished, nullptr, options.on_progress);
+      local_busy = run_local_chunks(execution, plan, queue, writer, units_finished, nullptr, options.on_progress);
       local_done = true;
     });
     long long remote_threads = 0;
     for (const Hello& hello : hellos) remote_threads += hello.threads;
     double remote_busy = 0.0;
     try {
-      remote_busy = coordinate(*mpi, remote_threads, queue, layout, writer, items_finished, progress, local_done);
+      remote_busy = coordinate(*mpi, remote_threads, queue, parts, writer, units_finished, progress, local_done);
     } catch (...) {
       g_interrupted = true;
       local.join();
@@ -479,7 +523,7 @@ RunOutcome run_experiment(const RunOptions& options) {
     outcome.write_error = fmt::format("{}: write failed ({})", path, std::strerror(failure->error));
   }
   outcome.items_total = total_items;
-  outcome.items_written = std::min(total_items, writer.next_block() * kItemsPerBlock);
+  outcome.items_written = writer.next() / parts;
   outcome.interrupted = outcome.items_written < total_items;
   outcome.output = plan.output;
   for (const ItemFile& file : plan.item_files()) outcome.item_files.push_back(file.name);

@@ -1,17 +1,18 @@
 #pragma once
-// `dabench run`: turns an experiment into work items (point, trial), runs them on OpenMP
-// threads, and writes trials.csv (in item order, as items finish), the kind's per-item files
+// `dabench run`: turns an experiment into work items (point, trial) — for the kinds other than
+// single scan, units (point, trial, algorithm) — runs them on OpenMP threads in the order of
+// harness/run/work_queue.hpp, and writes trials.csv (in item order, as items finish), the kind's per-item files
 // (multi-scan: targets.csv; tracking: tracks.csv, measurements.csv, and iterations.csv when
 // the experiment records iterations), summary.csv and meta.json.
 //
-// Every item draws its scenario from its own counter-based stream (seed, point, trial) and
-// runs the reference and every algorithm on that same draw, so rows are bit-identical (timings
-// aside) for any thread count or resume history. Everything that can be wrong with the
+// Every item (every unit) draws its scenario from its own counter-based stream (seed, point,
+// trial) and runs the reference and every algorithm (its algorithm) on that same draw, so rows
+// are bit-identical (timings aside) for any thread count, schedule or resume history. Everything that can be wrong with the
 // experiment (scenario, parameters of every point, algorithm SPECs, output folder) is checked
 // before the first trial runs.
 //
 // Under mpirun (RunOptions::transport), every rank reads the experiment; rank 0 opens the
-// output folder, hands blocks of items to its own threads and, on request, to the other ranks'
+// output folder, hands chunks of units to its own threads and, on request, to the other ranks'
 // threads, and writes every rank's rows through the same ordered writer, so the files are
 // those of a single process. A worker rank writes nothing.
 #include <cstdint>
@@ -40,6 +41,9 @@ struct RunOptions {
   bool resume = false;                  // finish the run in the output folder
   bool force = false;                   // discard the run in the output folder
   std::optional<Shard> shard;           // run one shard (default output: the file's + "-shard-K-of-N")
+  // A previous run of the same plan (its folder): its per-unit times order the units longest
+  // first (harness/run/work_queue.hpp; not for single scan, whose items run in order).
+  std::optional<std::string> costs_from;
   std::string command_line;             // recorded in meta.json
   const MpiTransport* transport = nullptr;  // under mpirun: this rank's link to the others
   // For a caller's own progress display (the Python module's): the items done and the items of

@@ -84,7 +84,8 @@ void TbdExecution::run_tracker(TbdWorker& worker, std::size_t a, bool keep_estim
   }
 }
 
-void TbdExecution::run_item(TbdWorker& worker, long long item) const {
+void TbdExecution::run_item(TbdWorker& worker, long long item, std::size_t first_algorithm,
+                            std::size_t end_algorithm) const {
   const auto point = static_cast<std::uint32_t>(item / plan_.trials);
   const auto trial = static_cast<std::uint32_t>(item % plan_.trials);
   const auto start = Clock::now();
@@ -95,8 +96,7 @@ void TbdExecution::run_item(TbdWorker& worker, long long item) const {
   const TbdTruth& truth = worker.sample.truth;
   const int steps = problem.steps();
   const bool first_trial = trial == 0;
-  const std::size_t count = worker.trackers.size();
-  for (std::size_t a = 0; a < count; ++a) run_tracker(worker, a, first_trial);
+  for (std::size_t a = first_algorithm; a < end_algorithm; ++a) run_tracker(worker, a, first_trial);
   worker.busy_seconds += std::chrono::duration<double>(Clock::now() - start).count();
 
   std::string& step_rows = worker.texts[0];
@@ -104,7 +104,7 @@ void TbdExecution::run_item(TbdWorker& worker, long long item) const {
   std::string& frame_rows = worker.texts[2];
   std::string& trial_rows = worker.texts.back();
   const std::string& prefix = point_prefix_[point];
-  for (std::size_t a = 0; a < count; ++a) {
+  for (std::size_t a = first_algorithm; a < end_algorithm; ++a) {
     if (!worker.reports[a].skipped.empty()) continue;
     for (int k = 0; k < steps; ++k) {
       fmt::format_to(std::back_inserter(step_rows), "{},{},{},{},{}", prefix, trial, plan_.seed, spec_field_[a], k + 1);
@@ -114,8 +114,9 @@ void TbdExecution::run_item(TbdWorker& worker, long long item) const {
     }
   }
 
+  const bool item_rows = first_algorithm == 0;  // the truth's and the frames' rows: once per item
   if (first_trial) {
-    for (std::size_t i = 0; i < truth.objects.size(); ++i) {
+    for (std::size_t i = 0; item_rows && i < truth.objects.size(); ++i) {
       const TbdTruth::Object& object = truth.objects[i];
       for (int k = 0; k < steps; ++k) {
         if (!object.alive[k]) continue;
@@ -124,7 +125,7 @@ void TbdExecution::run_item(TbdWorker& worker, long long item) const {
                         object.states(2, k), object.states(3, k));
       }
     }
-    for (std::size_t a = 0; a < count; ++a) {
+    for (std::size_t a = first_algorithm; a < end_algorithm; ++a) {
       if (!worker.reports[a].skipped.empty()) continue;
       for (int k = 0; k < steps; ++k) {
         for (const TbdEstimate& e : worker.reported[a][k]) {
@@ -134,7 +135,7 @@ void TbdExecution::run_item(TbdWorker& worker, long long item) const {
       }
     }
     const TbdSensor& sensor = problem.sensor;
-    for (int k = 0; k < steps; ++k) {
+    for (int k = 0; item_rows && k < steps; ++k) {
       const Eigen::Matrix2Xd& frame = problem.frames[k];
       for (int row = 0; row < sensor.rows; ++row) {
         for (int column = 0; column < sensor.columns; ++column) {
@@ -150,7 +151,7 @@ void TbdExecution::run_item(TbdWorker& worker, long long item) const {
 
   if (first_trial && plan_.experiment.record_beliefs) {
     std::string& belief_rows = worker.texts[3];
-    for (std::size_t a = 0; a < count; ++a) {
+    for (std::size_t a = first_algorithm; a < end_algorithm; ++a) {
       if (!worker.reports[a].skipped.empty()) continue;
       worker.trackers[a]->beliefs(worker.belief_samples);
       for (const TbdBeliefSample& b : worker.belief_samples) {
@@ -161,7 +162,7 @@ void TbdExecution::run_item(TbdWorker& worker, long long item) const {
     }
   }
 
-  for (std::size_t a = 0; a < count; ++a) {
+  for (std::size_t a = first_algorithm; a < end_algorithm; ++a) {
     const SolveReport& report = worker.reports[a];
     const bool ok = report.skipped.empty();
     fmt::format_to(std::back_inserter(trial_rows), "{},{},{},{},", prefix, trial, plan_.seed, spec_field_[a]);

@@ -47,7 +47,9 @@ class TbdExecution {
   TbdExecution(const RunPlan& plan, std::vector<std::unique_ptr<TbdScenario>> scenarios,
                const TbdMetricsOptions& metrics);
   TbdWorker make_worker() const;
-  void run_item(TbdWorker& worker, long long item) const;
+  // Runs trackers [first_algorithm, end_algorithm) of the plan on the item's draw: their rows, and
+  // with the first tracker the item's own rows (truth estimates, frames).
+  void run_item(TbdWorker& worker, long long item, std::size_t first_algorithm, std::size_t end_algorithm) const;
 
  private:
   void run_tracker(TbdWorker& worker, std::size_t a, bool keep_estimates) const;

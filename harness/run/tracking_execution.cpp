@@ -113,7 +113,8 @@ void TrackingExecution::score_history(TrackingWorker& worker, std::size_t a, con
   }
 }
 
-void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
+void TrackingExecution::run_item(TrackingWorker& worker, long long item, std::size_t first_algorithm,
+                                 std::size_t end_algorithm) const {
   const auto point = static_cast<std::uint32_t>(item / plan_.trials);
   const auto trial = static_cast<std::uint32_t>(item % plan_.trials);
   const auto start = Clock::now();
@@ -125,8 +126,7 @@ void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
   TrackingTruth never_alive;
   const TrackingTruth& scored = scoring_truth(truth, scans, never_alive);
 
-  const std::size_t count = worker.trackers.size();
-  for (std::size_t a = 0; a < count; ++a) {
+  for (std::size_t a = first_algorithm; a < end_algorithm; ++a) {
     SolveReport& report = worker.reports[a];
     TrackSet& tracks = worker.tracks[a];
     report.reset();
@@ -165,7 +165,8 @@ void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
   std::string& measurement_rows = worker.texts[1];
   std::string& trial_rows = worker.texts.back();
   const std::string& prefix = point_prefix_[point];
-  for (std::size_t i = 0; i < truth.targets.size(); ++i) {
+  const bool item_rows = first_algorithm == 0;  // the truth's and the measurements' rows: once per item
+  for (std::size_t i = 0; item_rows && i < truth.targets.size(); ++i) {
     const TrackingTruth::Target& target = truth.targets[i];
     for (int k = 0; k < scans; ++k) {
       if (!target.alive[k]) continue;
@@ -174,7 +175,7 @@ void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
       track_rows += ",,,,\n";
     }
   }
-  for (std::size_t a = 0; a < count; ++a) {
+  for (std::size_t a = first_algorithm; a < end_algorithm; ++a) {
     if (!worker.reports[a].skipped.empty()) continue;
     for (const Track& track : worker.tracks[a].tracks) {
       for (int s = 0; s < track.length(); ++s) {
@@ -187,7 +188,7 @@ void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
     }
   }
 
-  if (trial == 0) {
+  if (item_rows && trial == 0) {
     for (int k = 0; k < scans; ++k) {
       const Eigen::MatrixXd& scan = problem.scans[k];
       for (Eigen::Index j = 0; j < scan.cols(); ++j) {
@@ -202,7 +203,7 @@ void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
 
   if (record_iterations_) {
     std::string& iteration_rows = worker.texts[2];
-    for (std::size_t a = 0; a < count; ++a) {
+    for (std::size_t a = first_algorithm; a < end_algorithm; ++a) {
       if (!worker.reports[a].skipped.empty()) continue;
       const std::vector<TrackingMetrics>& history = worker.iteration_metrics[a];
       for (std::size_t r = 0; r < history.size(); ++r) {
@@ -215,7 +216,7 @@ void TrackingExecution::run_item(TrackingWorker& worker, long long item) const {
     }
   }
 
-  for (std::size_t a = 0; a < count; ++a) {
+  for (std::size_t a = first_algorithm; a < end_algorithm; ++a) {
     const SolveReport& report = worker.reports[a];
     const bool ok = report.skipped.empty();
     const TrackingMetrics m = ok ? worker.metrics[a] : kMissing;

@@ -63,7 +63,9 @@ class TrackingExecution {
   TrackingExecution(const RunPlan& plan, std::vector<std::unique_ptr<TrackingScenario>> scenarios,
                     const TrackingMetricsOptions& metrics);
   TrackingWorker make_worker() const;
-  void run_item(TrackingWorker& worker, long long item) const;
+  // Runs trackers [first_algorithm, end_algorithm) of the plan on the item's draw: their rows, and
+  // with the first tracker the item's own rows (truth tracks, measurements).
+  void run_item(TrackingWorker& worker, long long item, std::size_t first_algorithm, std::size_t end_algorithm) const;
 
  private:
   // Scores tracker a's recorded track sets into worker.iteration_metrics[a]; one that does not

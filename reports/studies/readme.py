@@ -3,7 +3,11 @@ paper's statement, the cost of the multi-scan paper's Algorithm 2 against the co
 solver, and the Open MPI measurements (efficiency, the writer's capacity, and the core counts
 derived from them), each from committed runs."""
 
+import csv
+import io
 import math
+import subprocess
+from pathlib import Path
 
 from reports.core import data, markdown, verdicts
 from reports.core.study import Claim, Run, Step, Study
@@ -39,6 +43,25 @@ for _pair in PAIRS:
             f"{MPI} -np 2 ./build/dabench run experiments/cluster-efficiency.ini --threads 1 --force "
             f"--out results/cluster/efficiency-np2-{_pair}"),
     ]
+SCHEDULE_RUNS = {  # fig3 at 8 trials, as issue 31 measures the work queue: 1 and 2 threads, and 2 with --costs-from
+    "threads1": "--threads 1",
+    "threads2": "--threads 2",
+    "threads2-costs-from": "--threads 2",
+}
+for _name, _threads in SCHEDULE_RUNS.items():
+    RUNS.append(Run(f"{CLUSTER}/schedule-fig3-8-{_name}",
+                    f"./build/dabench run experiments/multiscan-fig3.ini --trials 8 {_threads} --force "
+                    f"--out results/cluster/schedule-fig3-8-{_name}"
+                    + (f" --costs-from {CLUSTER}/schedule-fig3-8-threads1" if _name.endswith("costs-from") else "")))
+# The committed studies whose wall time the README predicts for 16, 64 and 256 workers.
+SCHEDULE_STUDIES = [
+    ("quick start", QUICKSTART), ("BP paper, experiment 1", "results/bp-paper/exp1"),
+    ("BP paper, experiment 2", "results/bp-paper/exp2"), ("BP paper, experiment 3", "results/bp-paper/exp3"),
+    ("multi-scan Fig. 3", "results/multiscan/fig3"), ("multi-scan Fig. 4", "results/multiscan/fig4"),
+    ("multi-scan Fig. 5", "results/multiscan/fig5"), ("JDT-VB Table IV", "results/jdtvb/table4"),
+    ("TBD-BP GOSPA (Fig. 2)", "results/tbd/gospa"),
+]
+SCHEDULE_WORKERS = (16, 64, 256)
 STEPS = [Step("/usr/bin/python3 plots/fig6.py results/quickstart/summary.csv --out results/quickstart/fig6.png "
               "--title \"2x3 grid, Pd = 0.6, lambda_fa = 0.01, r = 1\"", "the README's figure")]
 TIMING_COLUMNS = ("time_us",)
@@ -189,8 +212,72 @@ def fuzz_long_runs(report):
         + (f"\n\nNo long run without a finding is recorded yet for {', '.join(missing)}." if missing else ""))
 
 
+def span(seconds):
+    """A duration from microseconds to hours: "85 µs", "3.1 ms", "42 s", "12.7 min", "1.6 h"."""
+    if seconds < 1e-3:
+        return f"{markdown.sig(seconds * 1e6, 2)} µs"
+    if seconds < 1:
+        return f"{markdown.sig(seconds * 1e3, 2)} ms"
+    return markdown.duration(seconds)
+
+
+def schedule_csv(report, folder, workers, trials=None):
+    """`dabench schedule FOLDER --format csv` (the build's program) as rows of numbers by worker count."""
+    program = Path(report.root) / "build" / "dabench"
+    if not program.is_file():
+        raise data.DataError(f"{program}: not built (bash scripts/build.sh): the README's schedule table runs it")
+    command = [str(program), "schedule", folder, "--format", "csv", "--workers", ",".join(map(str, workers))]
+    if trials:
+        command += ["--trials", str(trials)]
+    done = subprocess.run(command, cwd=report.root, capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        raise data.DataError(f"{' '.join(command[1:])}: {done.stderr.strip()}")
+    return {int(r["workers"]): {k: float(v) for k, v in r.items()} for r in csv.DictReader(io.StringIO(done.stdout))}
+
+
+def scheduling(report):
+    """The work queue (issue 31): fig3 at 8 trials measured on 1 and 2 threads against the
+    simulator's predictions from the 1-thread run's unit times; the predictions for 16 workers
+    of fig3 and tbd-gospa at 32 trials; and a table of every committed study at 16, 64 and 256."""
+    root = Path(report.root)
+    metas = {name: data.read_meta(report.root, f"{CLUSTER}/schedule-fig3-8-{name}") for name in SCHEDULE_RUNS}
+    predicted = schedule_csv(report, f"{CLUSTER}/schedule-fig3-8-threads1", (1, 2))
+    for name, meta in metas.items():
+        report.value(f"schedule.fig3.{name}.wall", f"{markdown.fixed(meta['wall_seconds'], 1)} s")
+        report.value(f"schedule.fig3.{name}.fraction", markdown.fixed(meta["work_fraction"], 2))
+    two = predicted[2]
+    report.value("schedule.fig3.total", f"{markdown.fixed(two['total_s'], 1)} s")
+    report.value("schedule.fig3.longest", f"{markdown.fixed(two['longest_unit_s'], 1)} s")
+    report.value("schedule.fig3.best_fraction", markdown.fixed(two["total_s"] / (2 * two["bound_s"]), 2))
+    report.value("schedule.fig3.predicted.threads1", f"{markdown.fixed(predicted[1]['wall_s'], 1)} s")
+    report.value("schedule.fig3.predicted.threads2", f"{markdown.fixed(two['wall_s'], 1)} s")
+    report.value("schedule.fig3.predicted.fraction2", markdown.fixed(two["work_fraction"], 2))
+    report.value("schedule.fig3.predicted.known2", f"{markdown.fixed(two['known_wall_s'], 1)} s")
+    report.value("schedule.fig3.predicted.blocks2", f"{markdown.fixed(two['blocks_wall_s'], 1)} s")
+    report.value("schedule.fig3.predicted.blocks_fraction2", markdown.fixed(two["blocks_work_fraction"], 2))
+    for name, folder in (("fig3_32", "results/multiscan/fig3"), ("tbd_32", "results/tbd/gospa")):
+        at16 = schedule_csv(report, folder, (16,), trials=32)[16]
+        report.value(f"schedule.{name}", f"{markdown.sig(at16['wall_s'], 3)} s, {markdown.fixed(at16['wall_s'] / at16['bound_s'], 2)} × "
+                                         f"the bound of {markdown.sig(at16['bound_s'], 3)} s (8-item blocks: "
+                                         f"{markdown.sig(at16['blocks_wall_s'], 3)} s)")
+    rows = []
+    for label, folder in SCHEDULE_STUDIES:
+        by_workers = schedule_csv(report, folder, SCHEDULE_WORKERS)
+        first = by_workers[SCHEDULE_WORKERS[0]]
+        means = not any((root / folder / name).is_file() for name in ("trials.csv", "runs.csv"))
+        row = [f"{label} (`{folder}`)" + (" †" if means else ""), thousands(first["units"], 6),
+               span(first["total_s"]), span(first["longest_unit_s"])]
+        for w in SCHEDULE_WORKERS:
+            p = by_workers[w]
+            row.append(f"{span(p['wall_s'])} ({span(p['blocks_wall_s'])})")
+        rows.append(row)
+    report.value("schedule.table", markdown.table(
+        ["study", "units", "algorithm time", "longest unit"] + [f"{w} workers" for w in SCHEDULE_WORKERS], rows, "lrrrrrr"))
+
+
 def checks(report):
     quickstart(report)
+    scheduling(report)
     algorithm2(report)
     cluster(report)
     study_wall_times(report)
