@@ -313,6 +313,7 @@ int command_solve(int argc, char** argv) {
         .add("converged", report.converged)
         .add("w_star", report.w_star);
     if (std::isfinite(report.free_energy)) json.add("free_energy", report.free_energy);
+    if (std::isfinite(report.captured_mass)) json.add("captured_mass", report.captured_mass);
     json.add_raw("marginals", rows);
     out = json.str();
   }

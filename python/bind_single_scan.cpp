@@ -91,6 +91,7 @@ py::dict report_dict(const Solved& solved) {
   out["converged"] = solved.report.converged;
   out["w_star"] = solved.report.w_star;
   out["free_energy"] = solved.report.free_energy;
+  out["captured_mass"] = solved.report.captured_mass;
   out["time_us"] = solved.time_us;
   return out;
 }

@@ -67,6 +67,26 @@ void AssociationGraph::find_clusters() {
   for (int i = 0; i < targets_; ++i) cluster_targets_[next_slot_[cluster_of_root_[find_root(i)]]++] = i;
 }
 
+void AssociationGraph::cluster_measurements(int c, std::vector<int>& out, std::vector<int>& local) const {
+  out.clear();
+  for (int t = cluster_start_[c]; t < cluster_start_[c + 1]; ++t) {
+    const int i = cluster_targets_[t];
+    for (int e = row_start_[i]; e < row_start_[i + 1]; ++e) {
+      const int j = edge_measurement_[e];
+      if (local[j] < 0) {
+        local[j] = 0;
+        out.push_back(j);
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  for (std::size_t k = 0; k < out.size(); ++k) local[out[k]] = static_cast<int>(k);
+}
+
+void AssociationGraph::release_cluster_measurements(const std::vector<int>& out, std::vector<int>& local) {
+  for (const int j : out) local[j] = -1;
+}
+
 RowNormalizer write_normalized_row(const AssociationGraph& graph, int i, const double* weight, double* row,
                                    double floor) {
   const int begin = graph.row_begin(i);

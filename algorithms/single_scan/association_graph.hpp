@@ -42,6 +42,11 @@ class AssociationGraph {
   int clusters() const { return static_cast<int>(cluster_start_.size()) - 1; }
   int cluster_start(int c) const { return cluster_start_[c]; }
   const std::vector<int>& cluster_targets() const { return cluster_targets_; }
+  // The measurements of cluster c (after find_clusters()), in increasing order, into `out`; and
+  // for each, local[j] = its index in `out` (local has m entries, −1 for other measurements on
+  // entry and again after release_cluster_measurements(out, local)).
+  void cluster_measurements(int c, std::vector<int>& out, std::vector<int>& local) const;
+  static void release_cluster_measurements(const std::vector<int>& out, std::vector<int>& local);
 
  private:
   int find_root(int node);

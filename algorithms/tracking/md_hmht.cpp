@@ -16,7 +16,7 @@
 #include "algorithms/tracking/chi_square.hpp"
 #include "algorithms/tracking/jdt_vb_heads.hpp"
 #include "algorithms/tracking/md_hmht_tracks.hpp"
-#include "algorithms/tracking/murty.hpp"
+#include "algorithms/assignment/murty.hpp"
 #include "harness/core/errors.hpp"
 #include "harness/tracking/registry.hpp"
 

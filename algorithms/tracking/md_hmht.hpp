@@ -53,7 +53,7 @@
 // the same for every child of a scan up to terms common to all (new tracks, clutter).
 //
 // Hypotheses [P n, O meaning]. Per parent, rows with a gated measurement split into clusters
-// (no shared measurement across clusters); Murty's ranked assignment (algorithms/tracking/murty.hpp)
+// (no shared measurement across clusters); Murty's ranked assignment (algorithms/assignment/murty.hpp)
 // gives each cluster's `hypotheses` best events and RankedListMerge the parent's best
 // combinations. Reading A (default, Cox & Hingorani [45]): the `hypotheses` best children over
 // all parents survive; reading B (`per_parent = 1`): the best `hypotheses` children of every

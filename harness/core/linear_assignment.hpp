@@ -38,7 +38,7 @@
 // the total is optimal up to floating-point rounding of the reduced costs.
 //
 // Used by the GOSPA metric (harness/tbd/gospa.hpp) and as the inner solver of Murty's k-best
-// assignment (algorithms/tracking/murty.hpp) for MD-HMHT.
+// assignment (algorithms/assignment/murty.hpp) for MD-HMHT and k-best JPDA.
 #include <vector>
 
 namespace dabench {

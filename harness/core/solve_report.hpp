@@ -18,6 +18,9 @@ struct SolveReport {
   int line_search_steps = -1;
   double residual = std::numeric_limits<double>::quiet_NaN();
   double inner_residual = std::numeric_limits<double>::quiet_NaN();
+  // Methods that keep part of the events (k-best JPDA): the probability mass of the events kept,
+  // 1 when every event was (NaN: not computed).
+  double captured_mass = std::numeric_limits<double>::quiet_NaN();
 
   void reset() {
     skipped.clear();
@@ -28,6 +31,7 @@ struct SolveReport {
     line_search_steps = -1;
     residual = std::numeric_limits<double>::quiet_NaN();
     inner_residual = std::numeric_limits<double>::quiet_NaN();
+    captured_mass = std::numeric_limits<double>::quiet_NaN();
   }
 };
 

@@ -1,4 +1,4 @@
-// Tests of algorithms/tracking/murty.hpp: Murty's k best events against a sorted exhaustive
+// Tests of algorithms/assignment/murty.hpp: Murty's k best events against a sorted exhaustive
 // enumeration of every event (each row a column or a miss, columns distinct) on small random
 // problems with negative costs, forbidden pairs, forbidden misses and many ties; a hand-ranked
 // 2×2 problem; k above the number of feasible events; independent clusters ranked apart and
@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "algorithms/tracking/murty.hpp"
+#include "algorithms/assignment/murty.hpp"
 #include "harness/core/random_stream.hpp"
 #include "tests/support/input_error.hpp"
 

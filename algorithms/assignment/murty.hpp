@@ -1,10 +1,11 @@
 #pragma once
 // Murty's ranked assignment: the k best association events of a 2-D assignment problem with
 // misses, in ascending cost, for a hypothesis-oriented MHT (Cox & Hingorani, PAMI 18(2) 1996)
-// such as MD-HMHT. The problem: R rows (targets, or (target, path) pseudo-targets), C columns
-// (measurements), cost(r, j) of row r taking column j and miss_cost(r) of row r taking none;
-// an event gives each row one column or a miss, every column to at most one row (a column no
-// row takes is clutter, cost 0: costs are relative to "all clutter"). +∞ forbids a pair, or a
+// such as MD-HMHT, and for k-best JPDA (algorithms/single_scan/kbest_jpda.hpp). The problem:
+// R rows (targets, or (target, path) pseudo-targets), C columns (measurements), cost(r, j) of
+// row r taking column j and miss_cost(r) of row r taking none; an event gives each row one
+// column or a miss, every column to at most one row (a column no row takes is clutter, cost 0:
+// costs are relative to "all clutter"). +∞ forbids a pair, or a
 // row's miss. Cost of an event = Σ over rows, in row order, of its entries — computed the same
 // way for every event, so equal events have bitwise equal costs.
 //
@@ -27,7 +28,7 @@
 // Independent clusters: the events of a problem whose rows and columns split into clusters with
 // no finite pair across them are the products of per-cluster events, with costs adding. Rank
 // each cluster with MurtyRanking and combine the lists with RankedListMerge (below): this equals
-// one Murty on the whole problem (tests/tracking/test_murty.cpp), at far less cost.
+// one Murty on the whole problem (tests/assignment/test_murty.cpp), at far less cost.
 #include <cstddef>
 #include <span>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "algorithms/tracking/murty.hpp"
+#include "algorithms/assignment/murty.hpp"
 
 #include <algorithm>
 #include <cmath>
