@@ -27,6 +27,7 @@
 #include "harness/multi_scan/registry.hpp"
 #include "harness/run/library.hpp"
 #include "harness/run/mpi_transport.hpp"
+#include "harness/run/paired_comparison.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/run/schedule_simulation.hpp"
 #include "harness/run/shard_merge.hpp"
@@ -79,6 +80,13 @@ constexpr CommandUsage kScheduleUsage{
     "the queue of a rerun with --costs-from. The times come from trials.csv (or a track-before-detect\n"
     "report's runs.csv, or summary.csv's means per point and algorithm) and are the algorithms'\n"
     "alone: drawing, metrics and writing come on top. With --trials N: the first N trials of each point.\n"};
+constexpr CommandUsage kCompareUsage{
+    "dabench compare RUN_DIR [RUN_DIR_B] --algorithms A[,B] [--metric M,...] [--format table|csv]",
+    "Paired comparison on the same trials: two algorithms of one run, or one algorithm in two runs of\n"
+    "the same plan (same fingerprint and seed). Per sweep point and metric (default: the kind's error\n"
+    "and time): the mean paired difference A - B with its 95% t interval, the two-sided Wilcoxon\n"
+    "signed-rank p-value (zeros dropped; exact up to 50 untied differences, else normal with the tie\n"
+    "correction), Holm-adjusted over the points, and the share of trials where A is lower.\n"};
 constexpr CommandUsage kMergeUsage{
     "dabench merge OUT SHARD_DIR... [--force]",
     "Joins the folders of `dabench run --shard K/N` (K = 1..N, same experiment, seed and trials)\n"
@@ -88,7 +96,7 @@ constexpr CommandUsage kMergeUsage{
 std::string program_usage() {
   std::string text = "usage: ";
   const char* indent = "";
-  for (const CommandUsage* usage : {&kListUsage, &kSolveUsage, &kRunUsage, &kMergeUsage, &kScheduleUsage}) {
+  for (const CommandUsage* usage : {&kListUsage, &kSolveUsage, &kRunUsage, &kMergeUsage, &kScheduleUsage, &kCompareUsage}) {
     text += fmt::format("{}{}\n", indent, usage->synopsis);
     indent = "       ";
   }
@@ -493,6 +501,53 @@ int command_schedule(int argc, char** argv) {
   return 0;
 }
 
+// "a,b,c" → {"a", "b", "c"}; an empty item is an error naming the option.
+std::vector<std::string> comma_list(const std::string& text, const char* option) {
+  std::vector<std::string> items;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t end = std::min(text.find(',', at), text.size());
+    items.push_back(text.substr(at, end - at));
+    if (items.back().empty()) throw InputError(fmt::format("compare: {} '{}' has an empty item", option, text));
+    at = end + 1;
+  }
+  return items;
+}
+
+int command_compare(int argc, char** argv) {
+  po::options_description options("compare options");
+  std::vector<std::string> runs;
+  std::string algorithms, metrics, format;
+  options.add_options()
+      ("runs", po::value(&runs)->multitoken(), "one run folder, or two of the same plan")
+      ("algorithms", po::value(&algorithms)->required(), "A,B (one run) or A (two runs): SPECs as in trials.csv (bp:delta=1e-9,check_every=10,exact is two)")
+      ("metric", po::value(&metrics), "metric columns, comma-separated (default: the kind's error and time)")
+      ("format", po::value(&format)->default_value("table"), "table or csv");
+  po::positional_options_description positional;
+  positional.add("runs", -1);
+  const auto parsed = parse_command("compare", kCompareUsage, options, positional, argc, argv);
+  if (!parsed) return 0;
+  if (runs.empty() || runs.size() > 2) throw InputError("compare: give one run folder, or two runs of the same plan");
+  if (format != "table" && format != "csv") throw InputError(fmt::format("compare: --format must be table or csv, not '{}'", format));
+  CompareOptions compare;
+  compare.run_a = runs[0];
+  if (runs.size() == 2) compare.run_b = runs[1];
+  // SPECs hold commas too ("bp:delta=1e-9,check_every=10"): an item with '=' and no ':' goes on
+  // the SPEC before it.
+  for (const std::string& item : comma_list(algorithms, "--algorithms")) {
+    const bool continues = item.find('=') != std::string::npos && item.find(':') == std::string::npos;
+    if (continues && !compare.algorithms.empty()) {
+      compare.algorithms.back() += "," + item;
+    } else {
+      compare.algorithms.push_back(item);
+    }
+  }
+  if (parsed->count("metric")) compare.metrics = comma_list(metrics, "--metric");
+  const Comparison comparison = compare_runs(compare);
+  std::fputs((format == "csv" ? comparison_csv(comparison) : comparison_table(comparison)).c_str(), stdout);
+  return 0;
+}
+
 }  // namespace
 
 int cli_main(int argc, char** argv) {
@@ -506,6 +561,7 @@ int cli_main(int argc, char** argv) {
     }
     if (command == "merge") return command_merge(argc - 1, argv + 1, joined_command_line(argc, argv));
     if (command == "schedule") return command_schedule(argc - 1, argv + 1);
+    if (command == "compare") return command_compare(argc - 1, argv + 1);
     if (command == "-h" || command == "--help" || command == "help") {
       if (argc > 2) throw InputError(fmt::format("{}: unexpected argument '{}' (for a command's usage: dabench COMMAND --help)", command, argv[2]));
       std::fputs(program_usage().c_str(), stdout);
@@ -516,8 +572,8 @@ int cli_main(int argc, char** argv) {
       std::fputs(version_line().c_str(), stdout);
       return 0;
     }
-    throw InputError(command.empty() ? "missing command (list, solve, run, merge or schedule; see dabench --help)"
-                                     : fmt::format("unknown command '{}' (list, solve, run, merge or schedule; see dabench --help)", command));
+    throw InputError(command.empty() ? "missing command (list, solve, run, merge, schedule or compare; see dabench --help)"
+                                     : fmt::format("unknown command '{}' (list, solve, run, merge, schedule or compare; see dabench --help)", command));
   } catch (const InputError& error) {
     std::fprintf(stderr, "dabench: %s\n", printable(error.what()).c_str());
     return 2;
