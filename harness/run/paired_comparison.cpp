@@ -1,6 +1,7 @@
 #include "harness/run/paired_comparison.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -201,7 +202,15 @@ RunTable read_run(const std::string& folder, const std::vector<std::string>& alg
     const std::string& name = fields[static_cast<std::size_t>(algorithm)];
     table.algorithms.insert(name);
     if (std::find(algorithms.begin(), algorithms.end(), name) == algorithms.end()) continue;
-    const long long point = std::stoll(fields[0]), trial_index = std::stoll(fields[static_cast<std::size_t>(trial)]);
+    const auto index = [&](const std::string& field) {
+      long long value = -1;
+      const auto [stop, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+      if (error != std::errc() || stop != field.data() + field.size() || value < 0) {
+        throw InputError(fmt::format("compare: {}:{}: '{}' is not a point or trial index", path, line, field));
+      }
+      return value;
+    };
+    const long long point = index(fields[0]), trial_index = index(fields[static_cast<std::size_t>(trial)]);
     if (!table.point_fields.count(point)) {
       std::string leading;
       for (int c = 0; c < trial; ++c) {

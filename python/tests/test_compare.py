@@ -80,12 +80,16 @@ def test_two_runs_of_one_plan_and_refusals(tmp_path, dabench_program):
     assert float(rows[0]["mean_diff"]) == pytest.approx(-0.5)
     assert float(rows[0]["a_better"]) == 1.0
     other = write_run(tmp_path / "other", [(a, a)], fingerprint="beef")
+    broken = write_run(tmp_path / "broken", [(a, a)])
+    text = (broken / "trials.csv").read_text().split("\n")
+    (broken / "trials.csv").write_text("\n".join([text[0], "x" + text[1][1:]] + text[2:]))
     for args, message in [
         ((first, other, "--algorithms", "a"), "are not runs of the same plan (their fingerprint differ)"),
         ((first, "--algorithms", "a"), "one run compares two algorithms"),
         ((first, "--algorithms", "a,zz"), "no rows of algorithm 'zz'"),
         ((first, "--algorithms", "a,b:k=1,m=2", "--metric", "nope"), "no metric column 'nope'"),
         ((tmp_path / "none", "--algorithms", "a,b"), "no trials.csv"),
+        ((broken, "--algorithms", "a,b:k=1,m=2"), "'x' is not a point or trial index"),
     ]:
         done = subprocess.run([dabench_program, "compare", *map(str, args)], capture_output=True, text=True)
         assert done.returncode == 2 and message in done.stderr and done.stderr.count("\n") == 1, done.stderr
