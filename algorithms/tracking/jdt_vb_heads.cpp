@@ -34,14 +34,14 @@ struct Mapped {
   Eigen::MatrixXd information;
 };
 
-struct Hypothesis {
+struct HeadHypothesis {
   int members = 0;
   double mean_distance = std::numeric_limits<double>::infinity();
   std::vector<int> path_of;  // per group member: its path, or −1 when left out
   Vector mean;
   Eigen::MatrixXd covariance;
 
-  bool better_than(const Hypothesis& other) const {
+  bool better_than(const HeadHypothesis& other) const {
     return members > other.members || (members == other.members && mean_distance < other.mean_distance);
   }
 };
@@ -54,7 +54,7 @@ class HypothesisSearch {
         used_(mapped.empty() ? 0 : mapped[0].size(), 0) {}
 
   // The best consistent hypothesis over the available members.
-  Hypothesis best(const std::vector<char>& available) {
+  HeadHypothesis best(const std::vector<char>& available) {
     available_ = &available;
     best_ = {};
     required_ = 2;
@@ -65,9 +65,9 @@ class HypothesisSearch {
 
   // Every consistent hypothesis that assigns all the available members (their path-shifted
   // alternatives: e.g. two members 32 km apart in slant range fit EE+FE and EF+FF alike).
-  std::vector<Hypothesis> all_using(const std::vector<char>& available) {
+  std::vector<HeadHypothesis> all_using(const std::vector<char>& available) {
     available_ = &available;
-    std::vector<Hypothesis> found;
+    std::vector<HeadHypothesis> found;
     collect_ = &found;
     required_ = static_cast<int>(std::count(available.begin(), available.end(), 1));
     visit(0, 0);
@@ -107,7 +107,7 @@ class HypothesisSearch {
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(total);
     if (llt.info() != Eigen::Success) return;
-    Hypothesis h;
+    HeadHypothesis h;
     h.members = assigned;
     h.mean = llt.solve(weighted + prior_.asDiagonal() * average);
     double distance = 0.0;
@@ -134,20 +134,20 @@ class HypothesisSearch {
   std::vector<char> used_;
   const std::vector<char>* available_ = nullptr;
   int required_ = 2;                          // fewest assigned members of a hypothesis
-  std::vector<Hypothesis>* collect_ = nullptr;  // all_using(): where hypotheses go
-  Hypothesis best_;
+  std::vector<HeadHypothesis>* collect_ = nullptr;  // all_using(): where hypotheses go
+  HeadHypothesis best_;
 };
 
 // Keeps one of the alternatives whose states are within `gate` of each other (EF and FE,
 // whose slant ranges differ by ~0.1 km, give nearly the same state).
-bool distinct(const Hypothesis& h, const std::vector<Hypothesis>& kept, double gate) {
-  return std::none_of(kept.begin(), kept.end(), [&](const Hypothesis& k) {
+bool distinct(const HeadHypothesis& h, const std::vector<HeadHypothesis>& kept, double gate) {
+  return std::none_of(kept.begin(), kept.end(), [&](const HeadHypothesis& k) {
     const Vector d = h.mean - k.mean;
     return d.dot(k.covariance.llt().solve(d)) <= gate;
   });
 }
 
-TrackHead make_head(const Hypothesis& h, const std::vector<int>& group, int paths) {
+TrackHead make_head(const HeadHypothesis& h, const std::vector<int>& group, int paths) {
   TrackHead head{h.mean, h.covariance, 0.0, {}, {}};
   for (std::size_t j = 0; j < group.size(); ++j) {
     if (h.path_of[j] < 0) continue;
@@ -183,16 +183,16 @@ std::vector<TrackHead> form_track_heads(const Eigen::MatrixXd& scan, const std::
         }
       }
       HypothesisSearch search(mapped, options.prior_precision, options.gate);
-      const Hypothesis best = search.best(std::vector<char>(group.size(), 1));
+      const HeadHypothesis best = search.best(std::vector<char>(group.size(), 1));
       if (best.members >= 2) {
         started = true;
         std::vector<char> members(group.size(), 0);
         for (std::size_t j = 0; j < group.size(); ++j) members[j] = best.path_of[j] >= 0;
         if (options.alternative_heads) {
-          std::vector<Hypothesis> kept;
-          for (Hypothesis& h : search.all_using(members))
+          std::vector<HeadHypothesis> kept;
+          for (HeadHypothesis& h : search.all_using(members))
             if (distinct(h, kept, options.gate)) kept.push_back(std::move(h));
-          for (const Hypothesis& h : kept) heads.push_back(make_head(h, group, paths));
+          for (const HeadHypothesis& h : kept) heads.push_back(make_head(h, group, paths));
         } else {
           heads.push_back(make_head(best, group, paths));
         }
