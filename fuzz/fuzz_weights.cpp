@@ -2,10 +2,11 @@
 // weights_csv.hpp), and, when the matrix it gives is small, the solvers on it, as the library
 // entry point runs them (a table that is not a distribution is recorded as skipped:numerical
 // there). Findings: parsing gives neither a problem nor an InputError; two exact methods
-// (enumeration, EHM, the junction tree) that both solve disagree by more than 1e-9; an exact
-// method solves a problem on which an approximation (BP, fractional BP, BAA, correlation decay,
-// MAP) reports skipped:numerical, unless a row or column sum of ψ reaches
-// SingleScanProblem::kOutOfRangeSum (2^1020), where sums of messages can overflow.
+// (enumeration, EHM, the junction tree, the permanent, k-best JPDA with k beyond every cluster's
+// event count) that both solve disagree by more than 1e-9; an exact method solves a problem on
+// which an approximation (BP, fractional BP, BAA, correlation decay, MAP, cheap and modified cheap
+// JPDA, k-best JPDA with few events) reports skipped:numerical, unless a row or column sum of ψ
+// reaches SingleScanProblem::kOutOfRangeSum (2^1020), where sums of messages can overflow.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -26,8 +27,9 @@ namespace {
   std::abort();
 }
 
-constexpr const char* kExact[] = {"exact", "ehm", "jt"};
-constexpr const char* kApproximate[] = {"bp", "fbp", "baa", "cd", "map"};
+// A 6 × 6 problem has Σ_k C(6,k)² k! = 13327 joint events, so k = 20000 keeps them all.
+constexpr const char* kExact[] = {"exact", "ehm", "jt", "permanent", "kbest-jpda:k=20000"};
+constexpr const char* kApproximate[] = {"bp", "fbp", "baa", "cd", "map", "cheap-jpda", "modified-cheap-jpda", "kbest-jpda:k=3"};
 
 }  // namespace
 
