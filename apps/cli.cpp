@@ -435,19 +435,28 @@ int command_merge(int argc, char** argv, const std::string& command_line) {
   return 0;
 }
 
-std::vector<long long> parse_workers(const std::string& text) {
-  std::vector<long long> workers;
+// The items of a comma-separated option value; an empty item is an error naming the command's option.
+std::vector<std::string> comma_list(const std::string& text, const char* command, const char* option) {
+  std::vector<std::string> items;
   std::size_t at = 0;
   while (at <= text.size()) {
     const std::size_t end = std::min(text.find(',', at), text.size());
-    const std::string word = text.substr(at, end - at);
+    items.push_back(text.substr(at, end - at));
+    if (items.back().empty()) throw InputError(fmt::format("{}: {} '{}' has an empty item", command, option, text));
+    at = end + 1;
+  }
+  return items;
+}
+
+std::vector<long long> parse_workers(const std::string& text) {
+  std::vector<long long> workers;
+  for (const std::string& word : comma_list(text, "schedule", "--workers")) {
     char* stop = nullptr;
     const long long value = std::strtoll(word.c_str(), &stop, 10);
-    if (word.empty() || *stop != '\0' || value < 1 || value > 1000000) {
+    if (*stop != '\0' || value < 1 || value > 1000000) {
       throw InputError(fmt::format("schedule: --workers '{}' must be a list of counts from 1 to 1000000, e.g. 16,64,256", text));
     }
     workers.push_back(value);
-    at = end + 1;
   }
   return workers;
 }
@@ -502,18 +511,6 @@ int command_schedule(int argc, char** argv) {
 }
 
 // "a,b,c" → {"a", "b", "c"}; an empty item is an error naming the option.
-std::vector<std::string> comma_list(const std::string& text, const char* option) {
-  std::vector<std::string> items;
-  std::size_t at = 0;
-  while (at <= text.size()) {
-    const std::size_t end = std::min(text.find(',', at), text.size());
-    items.push_back(text.substr(at, end - at));
-    if (items.back().empty()) throw InputError(fmt::format("compare: {} '{}' has an empty item", option, text));
-    at = end + 1;
-  }
-  return items;
-}
-
 int command_compare(int argc, char** argv) {
   po::options_description options("compare options");
   std::vector<std::string> runs;
@@ -534,7 +531,7 @@ int command_compare(int argc, char** argv) {
   if (runs.size() == 2) compare.run_b = runs[1];
   // SPECs hold commas too ("bp:delta=1e-9,check_every=10"): an item with '=' and no ':' goes on
   // the SPEC before it.
-  for (const std::string& item : comma_list(algorithms, "--algorithms")) {
+  for (const std::string& item : comma_list(algorithms, "compare", "--algorithms")) {
     const bool continues = item.find('=') != std::string::npos && item.find(':') == std::string::npos;
     if (continues && !compare.algorithms.empty()) {
       compare.algorithms.back() += "," + item;
@@ -542,7 +539,7 @@ int command_compare(int argc, char** argv) {
       compare.algorithms.push_back(item);
     }
   }
-  if (parsed->count("metric")) compare.metrics = comma_list(metrics, "--metric");
+  if (parsed->count("metric")) compare.metrics = comma_list(metrics, "compare", "--metric");
   const Comparison comparison = compare_runs(compare);
   std::fputs((format == "csv" ? comparison_csv(comparison) : comparison_table(comparison)).c_str(), stdout);
   return 0;

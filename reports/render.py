@@ -26,7 +26,7 @@ sys.path.insert(0, REPO)
 
 from reports.core import data, study as study_core, template  # noqa: E402
 
-STUDY_NAMES = ["bp-paper", "multiscan", "jdtvb", "tbd", "readme"]
+STUDY_NAMES = ["bp-paper", "multiscan", "jdtvb", "tbd", "leaderboard", "readme"]
 
 
 def load(name):

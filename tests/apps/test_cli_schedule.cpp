@@ -83,7 +83,7 @@ TEST_CASE("cli schedule: bad input is one error line", "[cli][schedule]") {
            {{"schedule", "nowhere"}, "no trials.csv, runs.csv or summary.csv"},
            {{"schedule", "."}, "no trials.csv, runs.csv or summary.csv"},
            {{"schedule", ".", "--workers", "0"}, "--workers '0' must be a list of counts"},
-           {{"schedule", ".", "--workers", "4,,8"}, "--workers '4,,8'"},
+           {{"schedule", ".", "--workers", "4,,8"}, "schedule: --workers '4,,8' has an empty item"},
            {{"schedule", ".", "--format", "xml"}, "--format must be table or csv"},
            {{"schedule"}, "schedule: the option '--run' is required"}}) {
     const CliResult result = run_dabench(dir, args);
