@@ -131,9 +131,14 @@ def main(argv=None):
             ax.set_xlabel("median time per trial, µs (log)", fontsize=8)
     for k in range(len(panels), nrows * cols):
         axes[k // cols][k % cols].axis("off")
-    references = {r["algorithm"] for _, rows in panels for r in rows if r.get("role") == "reference"}
-    handles = [plt.Line2D([], [], color=styles[s][0], marker="*" if s in references else styles[s][1], ls="none",
-                          label=s + (" (reference)" if s in references else "")) for s in algorithms]
+    roles = []  # (spec, is the reference) in order of appearance: a spec can be both, in different runs
+    for _, rows in panels:
+        for r in rows:
+            key = (r["algorithm"], r.get("role") == "reference")
+            if key not in roles:
+                roles.append(key)
+    handles = [plt.Line2D([], [], color=styles[s][0], marker="*" if ref else styles[s][1], ls="none",
+                          label=s + (" (reference)" if ref else "")) for s, ref in roles]
     handles.append(plt.Line2D([], [], color="0.6", lw=1.2, label="Pareto front (complete runs)"))
     fig.legend(handles=handles, loc="lower center", ncol=6, fontsize=7, frameon=False, bbox_to_anchor=(0.5, 0.0))
     fig.tight_layout(rect=(0, 0.1 if nrows > 1 else 0.18, 1, 1))
