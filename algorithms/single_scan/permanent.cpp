@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "harness/single_scan/registry.hpp"
 
@@ -68,9 +69,17 @@ double SubsetPermanent::log_partition(const double* weights, int targets, int me
   return forward(weights, targets, measurements);
 }
 
-void SubsetPermanent::marginals(const double* weights, int targets, int measurements, std::vector<double>& out) {
+bool SubsetPermanent::marginals(const double* weights, int targets, int measurements, std::vector<double>& out) {
   const double log_z = forward(weights, targets, measurements);
   const std::size_t states = std::size_t{1} << q_;
+  double largest_weight = 0.0;
+  for (int k = 0; k < p_; ++k) {
+    for (const int l : gated_[k]) largest_weight = std::max(largest_weight, weight(k, l));
+  }
+  // The largest of exp(log scale of F_j + log scale of B_j' − log Z) over the pairings used: what
+  // an absolute loss in a scaled layer entry or product (underflow: below the smallest subnormal)
+  // is multiplied by on its way into a probability.
+  double log_amplification = -std::numeric_limits<double>::infinity();
   const std::size_t columns = static_cast<std::size_t>(measurements) + 1;
   out.assign(static_cast<std::size_t>(targets) * columns, 0.0);
   // Where "processed element k takes subset element l" and "k takes nothing" go in `out`.
@@ -84,7 +93,9 @@ void SubsetPermanent::marginals(const double* weights, int targets, int measurem
   for (int k = p_; k >= 1; --k) {  // element e = k − 1, between F_{k−1} and B_k
     const int e = k - 1;
     const double* f = forward_.data() + static_cast<std::size_t>(k - 1) * states;
-    const double factor = std::exp(log_scale_[k - 1] + log_backward - log_z);
+    const double log_factor = log_scale_[k - 1] + log_backward - log_z;
+    const double factor = std::exp(log_factor);
+    log_amplification = std::max(log_amplification, log_factor);
     if (!targets_are_subsets_) {  // a target taking nothing: its missed detection
       double nothing = 0.0;
       for (std::size_t s = 0; s < states; ++s) nothing += f[s] * backward_[s];
@@ -110,6 +121,7 @@ void SubsetPermanent::marginals(const double* weights, int targets, int measurem
     }
     for (std::size_t s = 0; s < states; ++s) next_backward_[s] /= largest;
     log_backward += std::log(largest);
+    log_amplification = std::max(log_amplification, log_scale_[k - 1] + log_backward - log_z);  // F_{k−1} with B_{k−1}
     std::swap(backward_, next_backward_);
   }
   if (targets_are_subsets_) {  // a target no measurement took: its missed detection
@@ -124,6 +136,14 @@ void SubsetPermanent::marginals(const double* weights, int targets, int measurem
       out[static_cast<std::size_t>(l) * columns] = sum * factor;
     }
   }
+  // Every stored entry of F and B and every product of the passes is ≤ 1 after scaling (a
+  // product with a weight ≤ largest_weight), so what underflow can take from one is below
+  // (q + 2) subnormals, and at most p · 2^q of them feed a probability, each amplified as above.
+  // Where that bound is not below 1e−12 (weights whose products leave double's range, e.g. ψ of
+  // 1e300 and 1e30 in one cluster), the marginals are refused rather than returned wrong.
+  const double lost = static_cast<double>(p_) * static_cast<double>(states) * (q_ + 2.0) *
+                      std::numeric_limits<double>::denorm_min() * (1.0 + largest_weight);
+  return std::log(lost) + log_amplification < std::log(1e-12);
 }
 
 std::string PermanentOptions::validate() const {
@@ -167,7 +187,10 @@ void PermanentMarginals::solve(const SingleScanProblem& problem, MarginalTable& 
                static_cast<std::size_t>(local_measurement_[graph_.edge_measurement(e)])] = graph_.edge_weight(e);
       }
     }
-    permanent_.marginals(dense_.data(), targets, measurements, cluster_marginals_);
+    if (!permanent_.marginals(dense_.data(), targets, measurements, cluster_marginals_)) {
+      report.skipped = "numerical";
+      return;
+    }
     for (int t = 0; t < targets; ++t) {
       const int i = members[graph_.cluster_start(c) + t];
       const double* local = cluster_marginals_.data() + static_cast<std::size_t>(t) * static_cast<std::size_t>(measurements + 1);

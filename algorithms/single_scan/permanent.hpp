@@ -26,7 +26,10 @@
 //
 // Numerics: every layer of F and B is divided by its largest entry and its log kept, so no
 // product over- or underflows in range; weights are the normalised ψ_ij = w_ij / (w_i0 w_0j). A
-// problem whose row or column sums overflow is refused (skipped:numerical).
+// problem whose row or column sums overflow is refused (skipped:numerical), and so is a cluster
+// where underflow in the scaled layers may have moved a probability by more than 1e-12 (a bound
+// from the largest weight and the largest factor a scaled entry is multiplied by; exact methods
+// agree to 1e-12 or refuse, as enumeration and EHM do).
 // Work limit: a cluster needs (p + 3) · 2^q doubles; above `memory_mb` (or q > 30) the solve
 // reports skipped:memory before allocating.
 #include <cstdint>
@@ -47,8 +50,9 @@ class SubsetPermanent {
   static bool fits(int targets, int measurements, std::int64_t memory_mb);
   // log Z of the cluster (weights row-major, targets × measurements).
   double log_partition(const double* weights, int targets, int measurements);
-  // The cluster's marginals, targets × (measurements + 1) row-major, column 0 = missed detection.
-  void marginals(const double* weights, int targets, int measurements, std::vector<double>& out);
+  // The cluster's marginals, targets × (measurements + 1) row-major, column 0 = missed detection;
+  // false where underflow may have moved a probability by more than 1e-12 (then `out` is void).
+  bool marginals(const double* weights, int targets, int measurements, std::vector<double>& out);
 
  private:
   // Sets the sides and runs the forward pass; returns log Z.

@@ -86,6 +86,23 @@ TEST_CASE("permanent: huge and tiny weights, and the memory limit", "[permanent]
   CHECK(solve("permanent:memory_mb=1024", big).report.skipped == "memory");
 }
 
+TEST_CASE("permanent: refuses where underflow in its scaled layers could move a probability", "[permanent]") {
+  // A fuzzer's find: targets 2 and 3 are identical, so their marginals must be; the product of a
+  // scaled forward entry (1e-30, target 1's ψ of 1e30 ahead of it) and a scaled backward entry
+  // (2e-300, target 3's 1e300 behind it) underflows, and without the bound the permanent gave
+  // target 2 a missed-detection probability of 0.994 against the exact 0.497.
+  SingleScanProblem problem;
+  problem.psi = RowMatrix(3, 3);
+  problem.psi << 170, 1e30, 0,
+                 1, 1e300, 0,
+                 1, 1e300, 0;
+  const SolveResult result = solve("permanent", problem);
+  CHECK(result.report.skipped == "numerical");
+  const SolveResult kept = solve("kbest-jpda:k=100", problem);  // the events' weights stay relative to the best
+  REQUIRE(kept.report.skipped.empty());
+  CHECK(kept.marginals(1, 0) == Approx(kept.marginals(2, 0)).epsilon(1e-12));
+}
+
 TEST_CASE("kbest-jpda: exact when k covers every event, with captured mass 1", "[kbest_jpda]") {
   RandomStream rng(42, 0, 0);
   for (int trial = 0; trial < 80; ++trial) {
