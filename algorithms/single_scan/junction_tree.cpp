@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cfenv>
 #include <cmath>
 #include <new>
 
@@ -47,6 +48,9 @@ inline bool test_bit(const std::uint64_t* bits, int b) { return (bits[b >> 6] >>
 
 // Below this a clique table entry risks losing precision to subnormals: recompute in logs.
 constexpr double kTiny = 1e-250;
+// Below this a collected separator entry (scaled to max 1) may have lost more than 1e-12 of its
+// parts to underflow (each part under 2^-1074): the distribute pass's ratio would multiply the loss.
+constexpr double kSeparatorFloor = 1e-290;
 
 }  // namespace
 
@@ -349,8 +353,11 @@ void JunctionTree::collect(int clique) {
     largest = std::max(largest, t);
     total += t;
   };
+  std::feclearexcept(FE_UNDERFLOW);
   walk<Weights::product>(levels - 1, 0, channel_index_.data() + static_cast<std::size_t>(levels) * channels_, 1.0, leaf);
-  if (largest < kTiny) {
+  // A product that underflowed may hold mass that the distribute pass scales back up: redo the
+  // clique relative to its largest entry.
+  if (largest < kTiny || std::fetestexcept(FE_UNDERFLOW)) {
     collect_log_domain(clique);
     return;
   }
@@ -452,7 +459,12 @@ void JunctionTree::distribute(int clique) {
     double* old = pool_.get() + separator_offset_[child];
     const double largest = *std::max_element(fresh, fresh + size);
     const double inverse = largest > 0.0 ? 1.0 / largest : 0.0;
-    for (std::size_t s = 0; s < size; ++s) old[s] = old[s] > 0.0 ? fresh[s] * inverse / old[s] : 0.0;
+    for (std::size_t s = 0; s < size; ++s) {
+      // A consistent separator state has a positive old value in exact arithmetic (every target can
+      // miss), so one near or below the subnormals with a positive new value lost its mass to underflow.
+      if (old[s] < kSeparatorFloor && fresh[s] > 0.0) underflow_lost_mass_ = true;
+      old[s] = old[s] > 0.0 ? fresh[s] * inverse / old[s] : 0.0;
+    }
   }
 }
 
@@ -694,6 +706,7 @@ void JunctionTree::solve(const SingleScanProblem& problem, MarginalTable& margin
   log_mantissa_ = 1.0;
   log_exponent_ = 0;
   log_extra_ = 0.0;
+  underflow_lost_mass_ = false;
   for (int c = 0; c < graph_.clusters(); ++c) {
     const int first = graph_.cluster_start(c);
     const int last = graph_.cluster_start(c + 1);
@@ -703,6 +716,10 @@ void JunctionTree::solve(const SingleScanProblem& problem, MarginalTable& margin
       report.skipped = "memory";
       return;
     }
+  }
+  if (underflow_lost_mass_) {
+    report.skipped = "numerical";
+    return;
   }
   log_partition_ = std::log(log_mantissa_) + static_cast<double>(log_exponent_) * std::log(2.0) + log_extra_;
 }

@@ -35,7 +35,11 @@
 //     message to the parent) and distribute (root to leaves: the child table is multiplied by
 //     new separator / old separator, with 0/0 = 0). Every message is scaled to max 1 and the
 //     log of the scale is accumulated, so log Z is available (log_partition()); a clique
-//     whose product would underflow is recomputed in the log domain.
+//     whose product would underflow is recomputed in the log domain. Where a separator entry
+//     collected from a child is near the subnormals (below 1e-290 of its largest) yet the parent
+//     sends it mass, underflow may have emptied it (every consistent separator state is positive
+//     in exact arithmetic: each target can miss), and the solve reports skipped:numerical rather
+//     than marginals that lost that mass (weights of 1e300 beside 1e30 in one cluster).
 //  5. Marginals of each target from the smallest clique containing it.
 //
 // Tables are dense with strides (first variable fastest), but every pass walks only the
@@ -225,6 +229,7 @@ class JunctionTree final : public SingleScanSolver {
   std::vector<double> state_potential_;
   std::vector<double> state_log_potential_;  // filled lazily for the log-domain fallback
   bool have_log_potential_ = false;
+  bool underflow_lost_mass_ = false;  // a distribute pass met a separator state emptied by underflow
   std::vector<int> domain_;
   std::vector<int> measurement_head_;        // per measurement: last state using it, or −1
   std::vector<int> state_next_;              // linked list of states per measurement

@@ -298,6 +298,21 @@ TEST_CASE("jt: degenerate problems", "[jt]") {
     CHECK(m(0, 1) == Approx(3.0 / 16.0).epsilon(1e-12));
     CHECK(jt.log_partition() == Approx(std::log(oracle.partition)).epsilon(1e-13));
   }
+  SECTION("weights of 1e300 beside 1e30: identical targets agree, or the solve is refused") {
+    // The weights fuzzer's finds (against k-best JPDA with every event). Rows 2 and 3 are
+    // identical, so must be their marginals (target 1's 1e30 leaves its scaled miss at 1e-30).
+    RowMatrix psi(3, 2);
+    psi << 170, 1e30, 1, 1e300, 1, 1e300;
+    const RowMatrix m = solve_ok(jt, make_problem(psi));
+    for (int j = 0; j <= 2; ++j) CHECK(m(1, j) == Approx(m(2, j)).epsilon(1e-12));
+    CHECK(m(1, 2) == Approx(0.5).epsilon(1e-12));
+    // Two more targets: jt gave target 2 no share of measurement 2 (k-best JPDA: 0.505); now a
+    // separator state that underflow emptied is detected and the solve refused, as enumeration
+    // and EHM refuse it.
+    RowMatrix wider(5, 3);
+    wider << 0, 1e30, 0, 15, 1e300, 1, 50, 1e300, 0, 55, 0, 0, 0, 0, 0.7;
+    CHECK(run_solver(jt, make_problem(wider)).report.skipped == "numerical");
+  }
 }
 
 TEST_CASE("jt: equals exact EHM on large random clusters, whichever elimination order wins", "[jt]") {
