@@ -169,11 +169,19 @@ int command_list(int argc, char** argv) {
     return 0;
   }
   std::string out;
+  // Each section's columns are as wide as its longest name and key, so no entry pushes its value.
   const auto describe = [&out](const auto& registry) {
     if (registry.entries().empty()) out += "  (none registered)\n";
+    std::size_t name_width = 10, key_width = 16;
     for (const auto& [name, entry] : registry.entries()) {
-      out += fmt::format("  {:<10} {}\n", name, entry.summary);
-      for (const auto& param : entry.defaults) out += fmt::format("      {:<16} = {:<10} {}\n", param.key, ParamList::format(param), param.doc);
+      name_width = std::max(name_width, name.size());
+      for (const auto& param : entry.defaults) key_width = std::max(key_width, param.key.size());
+    }
+    for (const auto& [name, entry] : registry.entries()) {
+      out += fmt::format("  {:<{}} {}\n", name, name_width, entry.summary);
+      for (const auto& param : entry.defaults) {
+        out += fmt::format("      {:<{}} = {:<10} {}\n", param.key, key_width, ParamList::format(param), param.doc);
+      }
     }
   };
   out += "Algorithms (SPEC = name or name:key=value,...):\n";

@@ -12,7 +12,7 @@ namespace {
 
 constexpr double kArmijo = 1e-4;         // sufficient-increase fraction of the line search
 constexpr double kSmallestStep = 1e-12;  // backtracking gives up below this step fraction
-constexpr double kInnerForcing = 1e-2;
+constexpr double kInnerForcing = 1e-2;   // inner tolerance during a step: this times the outer residual
 // Largest move of any σ_tj in one step. Where every track's indicator of an association is all
 // but certain (1 − μ ≈ 1e-30, say, for two tracks that both want measurement j), the tracks' part
 // of D is linear in σ_tj for tens of units and the quadratic model's maximiser lies at 1e30: the
@@ -23,7 +23,8 @@ constexpr double kTrustRadius = 10.0;
 void limit_step(Vector& direction) {
   const double largest = direction.size() > 0 ? direction.cwiseAbs().maxCoeff() : 0.0;
   if (largest > kTrustRadius) direction *= kTrustRadius / largest;
-}   // inner tolerance during a step: this times the outer residual
+}
+
 // K ≻ 0 in exact arithmetic, but the entries of near-certain associations (variances far below
 // 1e-16) carry rounding noise: a ridge of this fraction of the largest diagonal keeps the
 // factorisation meaningful without touching the directions whose curvature is above it.
@@ -135,11 +136,11 @@ double ColumnDualSolver::clutter_value(const Vector& sigma) const {
   return value;
 }
 
-bool ColumnDualSolver::evaluate_value(const Vector& sigma, int focus) {
+bool ColumnDualSolver::evaluate_value(const Vector& sigma, int extra_inner_scan) {
   split(sigma);
   value_ = clutter_value(sigma);
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
-    evaluations_[i] = tracks_[i].evaluate(sigma_by_scan_, settings_.inner, focus);
+    evaluations_[i] = tracks_[i].evaluate(sigma_by_scan_, settings_.inner, extra_inner_scan);
     if (!evaluations_[i].finite) return false;
     value_ += tracks_[i].dual_value();
   }
@@ -268,19 +269,19 @@ bool ColumnDualSolver::only_gamma_scan(int t) const {
   return true;
 }
 
-bool ColumnDualSolver::presolve(int focus, SolveReport& report) {
+bool ColumnDualSolver::presolve(int new_scan, SolveReport& report) {
   // Block Newton on σ_focus with the other duals fixed: the other scans' evidence is read once.
-  const Scan& scan = scans_[focus];
+  const Scan& scan = scans_[new_scan];
   const int m = scan.measurements;
-  if (m == 0 || !evaluate_value(sigma_, focus)) return false;
+  if (m == 0 || !evaluate_value(sigma_, new_scan)) return false;
   Eigen::MatrixXd block;
   Vector residual(m), direction, trial;
   for (int iteration = 0; iteration < settings_.max_iterations; ++iteration) {
     for (int j = 0; j < m; ++j) residual[j] = std::exp(-sigma_[scan.offset + j] / scan.beta - 1.0) - 1.0;
-    for (const TiltedTrack& track : tracks_) residual += track.log_marginal(focus).tail(m).array().exp().matrix();
+    for (const TiltedTrack& track : tracks_) residual += track.log_marginal(new_scan).tail(m).array().exp().matrix();
     if (residual.cwiseAbs().maxCoeff() <= settings_.presolve_tolerance) break;
     block.setZero(m, m);
-    for (const TiltedTrack& track : tracks_) track.add_block_matrix(focus, 0, block);
+    for (const TiltedTrack& track : tracks_) track.add_block_matrix(new_scan, 0, block);
     for (int j = 0; j < m; ++j) block(j, j) += std::exp(-sigma_[scan.offset + j] / scan.beta - 1.0) / scan.beta;
     if (!solve_positive(block, residual, direction)) break;
     limit_step(direction);
@@ -313,19 +314,21 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
   if (report.line_search_steps < 0) report.line_search_steps = 0;
   const auto gamma_scans = std::count_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return scan.gamma > 0.0; });
   if (gamma_scans > 1) settings_.inner.tolerance = std::max(settings.inner.tolerance, kInnerForcing);
-  const auto fresh = std::count_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return !scan.solved; });
+  const auto unsolved_scans = std::count_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return !scan.solved; });
   // After the presolve the tracks hold σ's evaluation with the new scan in their inner sets; when
   // that is their inner set anyway (the new scan is the γ-scan, as in cvs) the other scans'
   // evidence is reused.
-  bool ready = false;
-  if (settings_.presolve && fresh == 1 && scans() > 1) {
-    const auto focus = std::find_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return !scan.solved; }) - scans_.begin();
-    ready = presolve(static_cast<int>(focus), report) && scans_[focus].gamma > 0.0 && only_gamma_scan(static_cast<int>(focus));
+  bool inner_sets_evaluated = false;
+  if (settings_.presolve && unsolved_scans == 1 && scans() > 1) {
+    const int new_scan = static_cast<int>(
+        std::find_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return !scan.solved; }) - scans_.begin());
+    inner_sets_evaluated = presolve(new_scan, report) && scans_[new_scan].gamma > 0.0 && only_gamma_scan(new_scan);
   }
   // Every failed evaluation ends the solve as skipped:numerical: the tracks' state is then not a
   // solution at any σ, and no belief may be written from it.
   const auto numerical_failure = [&report] { report.skipped = "numerical"; };
-  if (ready ? !(evaluate_inner_value(sigma_) && (finish_gradient(), gradient_.allFinite())) : !evaluate(sigma_)) {
+  if (inner_sets_evaluated ? !(evaluate_inner_value(sigma_) && (finish_gradient(), gradient_.allFinite()))
+                           : !evaluate(sigma_)) {
     numerical_failure();
     return;
   }

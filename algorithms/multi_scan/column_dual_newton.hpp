@@ -66,8 +66,8 @@
 #include <vector>
 
 #include "algorithms/multi_scan/tilted_track.hpp"
+#include "harness/core/solve_report.hpp"
 #include "harness/multi_scan/problem.hpp"
-#include "harness/single_scan/solver.hpp"
 
 namespace dabench {
 
@@ -136,9 +136,9 @@ class ColumnDualSolver {
     bool solved = false;     // has a solution that reweight() must preserve
   };
 
-  // D at σ (value_) with the tracks' inner solves; `focus` joins every track's inner set. False
-  // if not finite.
-  [[nodiscard]] bool evaluate_value(const Vector& sigma, int focus = -1);
+  // D at σ (value_) with the tracks' inner solves; `extra_inner_scan` joins every track's inner
+  // set. False if not finite.
+  [[nodiscard]] bool evaluate_value(const Vector& sigma, int extra_inner_scan = -1);
   [[nodiscard]] bool evaluate_inner_value(const Vector& sigma);  // the same after σ changed on the inner sets only
   void finish_gradient();                         // gradient_ at the last evaluation
   [[nodiscard]] bool evaluate(const Vector& sigma) { return evaluate_value(sigma) && (finish_gradient(), gradient_.allFinite()); }

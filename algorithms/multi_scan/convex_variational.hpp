@@ -56,8 +56,8 @@
 #include <vector>
 
 #include "algorithms/single_scan/fractional_bp.hpp"
+#include "harness/core/solve_report.hpp"
 #include "harness/multi_scan/problem.hpp"
-#include "harness/single_scan/solver.hpp"
 
 namespace dabench {
 

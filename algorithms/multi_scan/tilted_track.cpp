@@ -450,12 +450,13 @@ TrackEvaluation TiltedTrack::inner_solve(const std::vector<Vector>& sigma, const
   return result;
 }
 
-TrackEvaluation TiltedTrack::evaluate(const std::vector<Vector>& sigma, const InnerSolveSettings& settings, int focus) {
+TrackEvaluation TiltedTrack::evaluate(const std::vector<Vector>& sigma, const InnerSolveSettings& settings,
+                                      int extra_inner_scan) {
   inner_scans_.clear();
   other_scans_.clear();
   for (int t = 0; t < scans(); ++t) {
     Scan& scan = scans_[t];
-    bool inner = t == focus;
+    bool inner = t == extra_inner_scan;
     for (int j = 0; j < scan.measurements && !inner; ++j) inner = is_inner(scan, j);
     scan.inner = inner;
     (inner ? inner_scans_ : other_scans_).push_back(t);

@@ -17,7 +17,7 @@
 // Passes. The factor tables are column-major (one column per association, contiguous over the
 // hypotheses), so every pass is a few streaming multiply–adds per entry. An evaluation reads
 // the scans outside the inner set once (their evidence s_t and the product over them, `rest`)
-// and then solves the inner equations on the inner set (the γ-scans, plus a `focus` scan whose
+// and then solves the inner equations on the inner set (the γ-scans, plus an `extra_inner_scan` whose
 // duals move alone during the solver's new-scan presolve). When the inner set is one scan g (as
 // in cvs) that solve reads no table at all: q(A) ∝ rest(A) s_g(A) gives
 //   μ_g(a) = e^{τ_g(a)} U(a) / Σ_b e^{τ_g(b)} U(b),   U(a) = Σ_A rest(A) ψ_g(A, a),
@@ -79,9 +79,10 @@ class TiltedTrack {
   void add_offset(int t, const Vector& shift) { scans_[t].offset += shift; }
 
   // Evaluates at column duals σ (`sigma[t]` has m_t entries): every scan's evidence, then the
-  // inner solve on the inner set (the scans with γ > 0, and `focus` if ≥ 0), warm-started from
+  // inner solve on the inner set (the scans with γ > 0, and `extra_inner_scan` if ≥ 0), warm-started from
   // the last v. Gives log Z and the inner set's marginals; finish() gives the others'.
-  TrackEvaluation evaluate(const std::vector<Vector>& sigma, const InnerSolveSettings& settings, int focus = -1);
+  TrackEvaluation evaluate(const std::vector<Vector>& sigma, const InnerSolveSettings& settings,
+                           int extra_inner_scan = -1);
   // Re-evaluates after σ changed on the inner set only: the other scans' evidence is reused.
   TrackEvaluation evaluate_inner(const std::vector<Vector>& sigma, const InnerSolveSettings& settings);
   // Marginals of the scans outside the inner set, at the last evaluation (same σ).
@@ -153,7 +154,7 @@ class TiltedTrack {
   void covariance(const std::vector<int>& offsets, int size);
 
   // Storage is kept between problems (scans_ beyond scan_count_, and every buffer's capacity),
-  // so that a run's solver touches no fresh memory after its first trials.
+  // so that a run's solver touches no unsolved_scans memory after its first trials.
   std::vector<Scan> scans_;
   int scan_count_ = 0;
   Vector prior_;                 // ψ(A), all original hypotheses

@@ -95,21 +95,23 @@ struct Hypothesis {
 struct Child {
   int parent = 0;
   double score = 0.0;
-  std::vector<int> measurement;
+  std::vector<int> measurement_of;  // per (track, path) of the parent
 };
 
 class MdHmhtRun {
  public:
   // `options` resolved (MdHmhtOptions::resolved); `observer` may be null.
   MdHmhtRun(const MdHmhtOptions& options, const TrackingProblem& problem, const md_hmht::ScanObserver* observer)
-      : o_(options), problem_(problem), observer_(observer), filter_(problem, options.gate_probability),
+      : options_(options), problem_(problem), observer_(observer), filter_(problem, options.gate_probability),
         paths_(filter_.paths()) {
     const bool dense = problem.clutter_mean > 200.0;
-    n_ = o_.hypotheses > 0 ? o_.hypotheses : (dense ? 2 : 3);
-    miss_limit_ = o_.deletion_misses > 0 ? o_.deletion_misses : (dense ? 5 : 3);
+    hypotheses_kept_ = options_.hypotheses > 0 ? options_.hypotheses : (dense ? 2 : 3);
+    miss_limit_ = options_.deletion_misses > 0 ? options_.deletion_misses : (dense ? 5 : 3);
     const int ny = problem.sensor->measurement_dim();
-    heads_ = ground_head_options(problem.sensor->state_dim(), ny, {o_.head_range, o_.head_range_rate, o_.head_azimuth},
-                                 o_.head_bearing_rate_sd, chi_square_quantile(o_.gate_probability, ny), o_.alternative_heads);
+    heads_ = ground_head_options(problem.sensor->state_dim(), ny,
+                                 {options_.head_range, options_.head_range_rate, options_.head_azimuth},
+                                 options_.head_bearing_rate_sd, chi_square_quantile(options_.gate_probability, ny),
+                                 options_.alternative_heads);
     hypotheses_.emplace_back();
   }
 
@@ -154,7 +156,7 @@ class MdHmhtRun {
   // The parent's n best children (assignment = joint): one 2-D assignment over all its
   // pseudo-targets, Murty per cluster, lists merged.
   void rank_children(int parent, std::vector<Child>& children) {
-    if (o_.assignment == MdHmhtOptions::kPerPath) {
+    if (options_.assignment == MdHmhtOptions::kPerPath) {
       rank_children_per_path(parent, children);
       return;
     }
@@ -174,8 +176,8 @@ class MdHmhtRun {
       Child child;
       child.parent = parent;
       child.score = h.score + miss_sum - totals_[i];
-      child.measurement.assign(static_cast<std::size_t>(tracks) * paths_, -1);
-      write_event(i, child.measurement.data());
+      child.measurement_of.assign(static_cast<std::size_t>(tracks) * paths_, -1);
+      write_event(i, child.measurement_of.data());
       children.push_back(std::move(child));
     }
   }
@@ -193,25 +195,25 @@ class MdHmhtRun {
     for (int tau = 0; tau < paths_; ++tau) {
       extended_.clear();
       for (const Partial& q : partials_) {
-        for (int j : q.measurement)
+        for (int j : q.measurement_of)
           if (j >= 0) taken_[j] = 1;
         rows_.clear();
         row_arcs_.clear();
         for (int t = 0; t < tracks; ++t) add_row(t, tau, prediction(h.live[t]).arcs[tau], &taken_);
-        for (int j : q.measurement)
+        for (int j : q.measurement_of)
           if (j >= 0) taken_[j] = 0;
         rank_rows();
         for (int i = 0; i < static_cast<int>(totals_.size()); ++i) {
-          Partial e{q.cost + totals_[i], q.measurement};
-          write_event(i, e.measurement.data());
+          Partial e{q.cost + totals_[i], q.measurement_of};
+          write_event(i, e.measurement_of.data());
           extended_.push_back(std::move(e));
         }
       }
       std::stable_sort(extended_.begin(), extended_.end(), [](const Partial& a, const Partial& b) { return a.cost < b.cost; });
-      if (static_cast<int>(extended_.size()) > n_) extended_.resize(n_);
+      if (static_cast<int>(extended_.size()) > hypotheses_kept_) extended_.resize(hypotheses_kept_);
       partials_.swap(extended_);
     }
-    for (Partial& q : partials_) children.push_back({parent, h.score + miss_sum - q.cost, std::move(q.measurement)});
+    for (Partial& q : partials_) children.push_back({parent, h.score + miss_sum - q.cost, std::move(q.measurement_of)});
   }
 
   // Appends the row (track t, path τ) if it gates a measurement not in `taken` (null: none taken).
@@ -239,7 +241,7 @@ class MdHmhtRun {
       rank_cluster(c);
       spans_.push_back(lists_[c].costs());
     }
-    merge_.merge(spans_, n_, totals_, choices_);
+    merge_.merge(spans_, hypotheses_kept_, totals_, choices_);
   }
 
   // Writes event i of rank_rows into measurement[track · paths + path] (rows it leaves out untouched).
@@ -308,7 +310,7 @@ class MdHmhtRun {
         cost_[static_cast<std::size_t>(r) * C + column] = arc.cost;
       }
     }
-    murty_.solve(cost_.data(), miss_.data(), R, C, n_, lists_[c]);
+    murty_.solve(cost_.data(), miss_.data(), R, C, hypotheses_kept_, lists_[c]);
   }
 
   // Reading A keeps the n best children overall, B every parent's n best (ties in order of
@@ -316,11 +318,11 @@ class MdHmhtRun {
   // `window` scans back.
   void select(std::vector<Child>& children) const {
     std::stable_sort(children.begin(), children.end(), [](const Child& a, const Child& b) { return a.score > b.score; });
-    if (!o_.per_parent && static_cast<int>(children.size()) > n_) children.resize(n_);
+    if (!options_.per_parent && static_cast<int>(children.size()) > hypotheses_kept_) children.resize(hypotheses_kept_);
     const auto ancestor = [&](const Child& c) -> long {  // the ancestor at scan k − window, −1 if none
-      if (o_.window == 1) return hypotheses_[c.parent].id;
+      if (options_.window == 1) return hypotheses_[c.parent].id;
       const auto& lineage = hypotheses_[c.parent].lineage;
-      return static_cast<int>(lineage.size()) >= o_.window - 1 ? lineage[o_.window - 2] : -1;
+      return static_cast<int>(lineage.size()) >= options_.window - 1 ? lineage[options_.window - 2] : -1;
     };
     const long anchor = ancestor(children.front());
     std::erase_if(children, [&](const Child& c) { return ancestor(c) != anchor; });
@@ -358,11 +360,11 @@ class MdHmhtRun {
     child.score = c.score;
     child.ended = parent.ended;
     child.lineage.push_back(parent.id);
-    for (std::size_t i = 0; i + 1 < static_cast<std::size_t>(o_.window) && i < parent.lineage.size(); ++i) {
+    for (std::size_t i = 0; i + 1 < static_cast<std::size_t>(options_.window) && i < parent.lineage.size(); ++i) {
       child.lineage.push_back(parent.lineage[i]);
     }
     for (std::size_t t = 0; t < parent.live.size(); ++t) {
-      const NodePtr next = updated(parent.live[t], &c.measurement[t * paths_], k);
+      const NodePtr next = updated(parent.live[t], &c.measurement_of[t * paths_], k);
       if (next->empty_gates < miss_limit_) child.live.push_back(next);
       else if (next->confirmed()) child.ended.push_back(next);
     }
@@ -391,7 +393,7 @@ class MdHmhtRun {
     auto [it, inserted] = updates_.try_emplace({node->serial, std::vector<int>(measurement_of_path, measurement_of_path + paths_)});
     if (!inserted) return it->second;
     TrackNode next = filter_.update(node, prediction(node), measurement_of_path, problem_.scans[k], k, next_serial_++);
-    if (!next.confirmed() && next.llr >= o_.confirm_llr) next.confirmed_scan = k;
+    if (!next.confirmed() && next.llr >= options_.confirm_llr) next.confirmed_scan = k;
     it->second = std::make_shared<const TrackNode>(std::move(next));
     return it->second;
   }
@@ -410,7 +412,7 @@ class MdHmhtRun {
       // starts at its head, or at its confirmation (a scan with an assigned measurement: only
       // those raise the LLR, so first ≤ last).
       const int last = end->scan == last_scan && end->empty_gates < miss_limit_ ? last_scan : end->last_hit_scan;
-      const int first = o_.report_from == MdHmhtOptions::kFromConfirmation ? end->confirmed_scan : end->first_scan;
+      const int first = options_.report_from == MdHmhtOptions::kFromConfirmation ? end->confirmed_scan : end->first_scan;
       Track track;
       track.id = static_cast<int>(end->track);
       track.first_scan = first;
@@ -454,15 +456,16 @@ class MdHmhtRun {
   };
   struct Partial {  // assignment = per_path: an event over the paths so far
     double cost;    // Σ c_pj of its pairs
-    std::vector<int> measurement;  // per (track, path) of the parent, −1 none
+    std::vector<int> measurement_of;  // per (track, path) of the parent, −1 none
   };
 
-  const MdHmhtOptions& o_;
+  const MdHmhtOptions& options_;
   const TrackingProblem& problem_;
   const md_hmht::ScanObserver* observer_;
   md_hmht::TrackFilter filter_;
   const int paths_;
-  int n_ = 3, miss_limit_ = 3;
+  int hypotheses_kept_ = 3;  // N: hypotheses kept per scan (per parent with per_parent)
+  int miss_limit_ = 3;       // scans without a measurement before a track is deleted
   TrackHeadOptions heads_;
   std::vector<Hypothesis> hypotheses_;
   long next_serial_ = 1, next_hypothesis_ = 1;

@@ -806,6 +806,13 @@ TEST_CASE("cli list: names algorithms with parameters and scenarios and experime
     CHECK(contains(result.out, word));
   }
   CHECK(snapshot(dir.work()).empty());
+  // A section's summaries start in one column, however long its longest name.
+  const auto summary_column = [&](const std::string& name) {
+    const std::size_t line = result.out.find("\n  " + name + " ");
+    REQUIRE(line != std::string::npos);
+    return result.out.find_first_not_of(' ', line + 3 + name.size()) - line;
+  };
+  CHECK(summary_column("bp") == summary_column("modified-cheap-jpda"));
 }
 
 TEST_CASE("cli help: prints the usage on stdout", "[cli]") {

@@ -1,11 +1,13 @@
 #pragma once
 // Helpers of the run tests (test_run_multi_scan, test_run_tracking, test_run_tracking_iterations):
-// run an experiment through the C++ API, compare CSV tables, find the byte where a work item's
-// rows start (for resume tests that cut files there).
+// run an experiment through the C++ API, check that a bad one is refused in one line, compare CSV
+// tables, find the byte where a work item's rows start (for resume tests that cut files there).
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <vector>
 
+#include "harness/core/errors.hpp"
 #include "harness/run/runner.hpp"
 #include "tests/support/cli_runner.hpp"
 
@@ -20,6 +22,24 @@ inline dabench::RunOutcome run_in(const TempDir& dir, const std::string& ini, co
   options.resume = resume;
   options.force = force;
   return dabench::run_experiment(options);
+}
+
+// Writes `text` as dir/bad.ini and checks that running it throws InputError with one line naming
+// every part, and that it writes no output folder B.
+inline void check_refused_experiment(TempDir& dir, const std::string& text, const std::vector<std::string>& parts) {
+  dir.write("bad.ini", text);
+  try {
+    run_in(dir, "bad.ini", "B", 1);
+    FAIL("accepted: " << text);
+  } catch (const dabench::InputError& error) {
+    const std::string message = error.what();
+    for (const auto& part : parts) {
+      INFO("message: " << message);
+      CHECK(contains(message, part));
+    }
+    CHECK(message.find('\n') == std::string::npos);
+  }
+  CHECK_FALSE(dir.exists("B"));
 }
 
 // Same header and rows; the count of differing rows is reported, not every cell.

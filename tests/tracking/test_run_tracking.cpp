@@ -584,19 +584,7 @@ TEST_CASE("run tracking: othr, --resume after a hard kill finishes identically",
 TEST_CASE("run tracking: configuration errors are one clear line", "[run][tracking]") {
   TempDir dir;
   const auto refused = [&](const std::string& text, const std::vector<std::string>& parts) {
-    dir.write("bad.ini", text);
-    try {
-      run_in(dir, "bad.ini", "B", 1);
-      FAIL("accepted: " << text);
-    } catch (const dabench::InputError& error) {
-      const std::string message = error.what();
-      for (const auto& part : parts) {
-        INFO("message: " << message);
-        CHECK(contains(message, part));
-      }
-      CHECK(message.find('\n') == std::string::npos);
-    }
-    CHECK_FALSE(dir.exists("B"));
+    check_refused_experiment(dir, text, parts);
   };
   refused("scenario = othr\ntrials = 2\nalgorithm = no-such-tracker\n",
           {"bad.ini", "unknown tracker 'no-such-tracker'", "known: ", "test-fixed-track"});

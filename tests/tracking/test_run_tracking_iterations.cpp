@@ -265,19 +265,7 @@ TEST_CASE("run tracking iterations: the switch outside tracking, or not a boolea
           "[run][tracking][iterations]") {
   TempDir dir;
   const auto refused = [&](const std::string& text, const std::vector<std::string>& parts) {
-    dir.write("bad.ini", text);
-    try {
-      run_in(dir, "bad.ini", "B", 1);
-      FAIL("accepted: " << text);
-    } catch (const dabench::InputError& error) {
-      const std::string message = error.what();
-      for (const auto& part : parts) {
-        INFO("message: " << message);
-        CHECK(contains(message, part));
-      }
-      CHECK(message.find('\n') == std::string::npos);
-    }
-    CHECK_FALSE(dir.exists("B"));
+    check_refused_experiment(dir, text, parts);
   };
   refused("scenario = grid\ntrials = 2\nreference = exact\nalgorithm = bp\niterations = true\n",
           {"bad.ini", "'iterations = true'", "scenario 'grid' is single-scan"});
