@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/cli_contract.hpp"
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/run_files.hpp"
 
@@ -42,13 +43,6 @@ constexpr int kTrials = 12;
 std::size_t item_offset(const std::string& text, long long item) { return offset_of_item(text, item, kTrials); }
 constexpr int kPoints = 2;
 constexpr int kSpecs = 2;
-
-CliResult run_ok(const TempDir& dir, const std::vector<std::string>& args) {
-  const CliResult result = run_dabench(dir, args);
-  INFO("stderr: " << result.err);
-  REQUIRE(result.status == 0);
-  return result;
-}
 
 CsvTable table_without_time(const TempDir& dir, const std::string& relative) {
   REQUIRE(dir.exists(relative));

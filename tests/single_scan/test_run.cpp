@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "harness/core/build_info.hpp"
+#include "tests/support/cli_contract.hpp"
 #include "tests/support/cli_runner.hpp"
 
 using namespace dabench::test::cli;
@@ -68,16 +69,6 @@ const char* const kLong =
     "lambda_fa = 0.02\n"
     "[sweep]\n"
     "spacing = 0.5, 1.5\n";
-
-CliResult run_ok(const TempDir& dir, const std::vector<std::string>& args) {
-  const CliResult result = run_dabench(dir, args);
-  std::string shown;
-  for (const auto& arg : args) shown += " " + arg;
-  INFO("dabench" << shown);
-  INFO("stderr: " << result.err);
-  REQUIRE(result.status == 0);
-  return result;
-}
 
 bool is_time_column(const std::string& name) { return name.rfind("time_us", 0) == 0; }
 

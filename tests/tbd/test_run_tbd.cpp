@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/cli_contract.hpp"
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/run_files.hpp"
 
@@ -37,13 +38,6 @@ const char* const kTiny =
     "[metrics]\n"
     "gospa_cutoff = 2\n";
 constexpr int kTrials = 3, kSpecs = 2, kSteps = 6, kCells = 144;
-
-CliResult run_ok(const TempDir& dir, const std::vector<std::string>& args) {
-  const CliResult result = run_dabench(dir, args);
-  INFO("stderr: " << result.err);
-  REQUIRE(result.status == 0);
-  return result;
-}
 
 bool is_timing(const std::string& name) { return name == "time_us" || name.rfind("step_time_us", 0) == 0; }
 
