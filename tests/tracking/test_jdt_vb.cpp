@@ -16,6 +16,7 @@
 #include "harness/tracking/metrics.hpp"
 #include "harness/tracking/registry.hpp"
 #include "scenarios/tracking/othr.hpp"
+#include "tests/support/tracker_runs.hpp"
 
 namespace {
 
@@ -152,10 +153,7 @@ TEST_CASE("jdt-vb: literal = 1 is eq (32) fusion and no alternative heads; the d
   for (const char* spec : {"jdt-vb:literal=1,joint_fusion=1", "jdt-vb:joint_fusion=0,alternative_heads=0", "jdt-vb",
                            "jdt-vb:alternative_heads=0", "jdt-vb:literal=1,delete_on_mean=1",
                            "jdt-vb:joint_fusion=0,alternative_heads=0,delete_on_mean=1"}) {
-    auto tracker = dabench::make_tracker(spec);
-    dabench::SolveReport report;
-    tracker->run(sample.problem, runs.emplace_back(), report);
-    REQUIRE(report.skipped.empty());
+    runs.push_back(dabench::test::solved_tracks(spec, sample.problem));
   }
   const auto same = [](const dabench::TrackSet& a, const dabench::TrackSet& b) {
     if (a.tracks.size() != b.tracks.size()) return false;
@@ -173,11 +171,7 @@ namespace {
 
 // Confirmed tracks of `spec` on the problem that cover scans first..last without a break.
 int tracks_spanning(const char* spec, const dabench::TrackingProblem& problem, int first, int last) {
-  auto tracker = dabench::make_tracker(spec);
-  dabench::TrackSet tracks;
-  dabench::SolveReport report;
-  tracker->run(problem, tracks, report);
-  REQUIRE(report.skipped.empty());
+  const dabench::TrackSet tracks = dabench::test::solved_tracks(spec, problem);
   return static_cast<int>(std::count_if(tracks.tracks.begin(), tracks.tracks.end(), [&](const dabench::Track& t) {
     return t.confirmed && t.first_scan <= first && t.first_scan + t.length() - 1 >= last;
   }));

@@ -19,6 +19,7 @@
 #include "harness/tracking/metrics.hpp"
 #include "harness/tracking/registry.hpp"
 #include "scenarios/tracking/othr.hpp"
+#include "tests/support/tracker_runs.hpp"
 
 namespace {
 
@@ -33,14 +34,6 @@ dabench::TrackingScenarioSample draw(double pd, double clutter, int run, int sca
   return sample;
 }
 
-dabench::TrackSet run_tracker(const std::string& spec, const dabench::TrackingProblem& problem) {
-  auto tracker = dabench::make_tracker(spec);
-  dabench::TrackSet tracks;
-  dabench::SolveReport report;
-  tracker->run(problem, tracks, report);
-  REQUIRE(report.skipped.empty());
-  return tracks;
-}
 
 // The problem of `sample` with target 0's noiseless detections on `paths` at scans 0..last only.
 dabench::TrackingProblem one_target(const dabench::TrackingScenarioSample& sample, const std::vector<int>& paths,
@@ -166,7 +159,7 @@ TEST_CASE("md-hmht: one target without clutter gives one exact track", "[md_hmht
   for (const std::vector<int>& paths : {std::vector<int>{0, 1, 2, 3}, std::vector<int>{0, 2, 3}}) {
     INFO("paths " << paths.size());
     const dabench::TrackingProblem problem = one_target(sample, paths, 19);
-    const dabench::TrackSet tracks = run_tracker("md-hmht", problem);
+    const dabench::TrackSet tracks = dabench::test::solved_tracks("md-hmht", problem);
     REQUIRE(tracks.tracks.size() == 1);
     const dabench::Track& track = tracks.tracks[0];
     CHECK(track.confirmed);
@@ -193,7 +186,7 @@ TEST_CASE("md-hmht: a track ends at its last return and is not reported past it"
   dabench::TrackingProblem problem = one_target(sample, {0, 1, 3}, 9);
   for (double clutter : {125.0, 400.0}) {
     problem.clutter_mean = clutter;  // density of the likelihood ratios and the 3 / 5 deletion rule
-    const dabench::TrackSet tracks = run_tracker("md-hmht", problem);
+    const dabench::TrackSet tracks = dabench::test::solved_tracks("md-hmht", problem);
     REQUIRE(tracks.tracks.size() == 1);
     CHECK(tracks.tracks[0].first_scan == 0);
     CHECK(tracks.tracks[0].length() == 10);
@@ -206,7 +199,7 @@ TEST_CASE("md-hmht: at pd = 0.75 and 125 clutter per scan it tracks all four tar
   std::vector<dabench::TrackingMetrics> runs;
   for (int run = 0; run < 8; ++run) {
     const auto sample = draw(0.75, 125.0, run);
-    runs.push_back(dabench::compute_tracking_metrics(sample.truth, run_tracker("md-hmht", sample.problem), {}));
+    runs.push_back(dabench::compute_tracking_metrics(sample.truth, dabench::test::solved_tracks("md-hmht", sample.problem), {}));
   }
   const auto m = dabench::mean_over_runs(runs);
   CHECK(m.nvt >= 3.5);
@@ -224,7 +217,7 @@ TEST_CASE("md-hmht: every hypothesis setting tracks the four targets without clu
     const auto sample = draw(1.0, 0.0, run);
     for (const char* spec : {"md-hmht:hypotheses=1,window=1", "md-hmht:hypotheses=5,window=4", "md-hmht:per_parent=1"}) {
       INFO(spec << ", run " << run);
-      const auto m = dabench::compute_tracking_metrics(sample.truth, run_tracker(spec, sample.problem), {});
+      const auto m = dabench::compute_tracking_metrics(sample.truth, dabench::test::solved_tracks(spec, sample.problem), {});
       CHECK(m.nvt == 4.0);
       CHECK(m.nft == 0.0);
       CHECK(m.tpd > 0.95);
@@ -234,8 +227,8 @@ TEST_CASE("md-hmht: every hypothesis setting tracks the four targets without clu
 
 TEST_CASE("md-hmht: the same problem gives identical tracks", "[md_hmht]") {
   const auto sample = draw(0.4, 400.0, 5);
-  const dabench::TrackSet a = run_tracker("md-hmht", sample.problem);
-  const dabench::TrackSet b = run_tracker("md-hmht", sample.problem);
+  const dabench::TrackSet a = dabench::test::solved_tracks("md-hmht", sample.problem);
+  const dabench::TrackSet b = dabench::test::solved_tracks("md-hmht", sample.problem);
   REQUIRE(a.tracks.size() == b.tracks.size());
   for (std::size_t t = 0; t < a.tracks.size(); ++t) {
     CHECK(a.tracks[t].id == b.tracks[t].id);

@@ -26,6 +26,7 @@
 #include "harness/core/random_stream.hpp"
 #include "harness/tracking/registry.hpp"
 #include "scenarios/tracking/othr.hpp"
+#include "tests/support/tracker_runs.hpp"
 
 namespace {
 
@@ -414,15 +415,6 @@ dabench::TrackingProblem one_target_with_gap(double clutter, int scans, int gap_
   return model_problem(0.75, clutter, std::move(s));
 }
 
-dabench::TrackSet run_spec(const std::string& spec, const dabench::TrackingProblem& problem) {
-  auto tracker = dabench::make_tracker(spec);
-  dabench::TrackSet tracks;
-  dabench::SolveReport report;
-  tracker->run(problem, tracks, report);
-  REQUIRE(report.skipped.empty());
-  return tracks;
-}
-
 dabench::MdHmhtOptions options(int n, int window, int assignment = dabench::MdHmhtOptions::kJoint) {
   dabench::MdHmhtOptions o;
   o.hypotheses = n;
@@ -584,8 +576,8 @@ TEST_CASE("md-hmht: report_from = confirmation starts a track at the scan its LL
     });
     REQUIRE(confirmation >= 1);
     const std::string common = fmt::format("md-hmht:alternative_heads=0,confirm_llr={}", threshold);
-    const dabench::TrackSet head = run_spec(common, p);
-    const dabench::TrackSet confirmed = run_spec(common + ",report_from=confirmation", p);
+    const dabench::TrackSet head = dabench::test::solved_tracks(common, p);
+    const dabench::TrackSet confirmed = dabench::test::solved_tracks(common + ",report_from=confirmation", p);
     REQUIRE(head.tracks.size() == 1);
     REQUIRE(confirmed.tracks.size() == 1);
     CHECK(head.tracks[0].first_scan == 0);
@@ -617,8 +609,8 @@ TEST_CASE("md-hmht: literal = 1 is the paper-literal set; the new options are ch
   dabench::TrackingScenarioSample sample;
   dabench::RandomStream rng(2019, 0, 3);
   dabench::OthrScenario(scenario).generate(rng, sample);
-  const auto a = run_spec("md-hmht:literal=1,alternative_heads=1,report_from=head,assignment=joint", sample.problem);
-  const auto b = run_spec("md-hmht:alternative_heads=0,report_from=confirmation,assignment=per_path", sample.problem);
+  const auto a = dabench::test::solved_tracks("md-hmht:literal=1,alternative_heads=1,report_from=head,assignment=joint", sample.problem);
+  const auto b = dabench::test::solved_tracks("md-hmht:alternative_heads=0,report_from=confirmation,assignment=per_path", sample.problem);
   REQUIRE(a.tracks.size() == b.tracks.size());
   REQUIRE(!a.tracks.empty());
   for (std::size_t t = 0; t < a.tracks.size(); ++t) {
@@ -649,7 +641,7 @@ TEST_CASE("md-hmht: a track survives limit - 1 empty-gate scans as the same trac
   for (auto [clutter, limit] : {std::pair{125.0, 3}, {400.0, 5}}) {
     for (int gap : {limit - 1, limit}) {
       INFO("N_c " << clutter << ", gap " << gap);
-      const dabench::TrackSet tracks = run_spec("md-hmht", one_target_with_gap(clutter, 20, 10, 10 + gap));
+      const dabench::TrackSet tracks = dabench::test::solved_tracks("md-hmht", one_target_with_gap(clutter, 20, 10, 10 + gap));
       if (gap < limit) {
         REQUIRE(tracks.tracks.size() == 1);
         CHECK(tracks.tracks[0].first_scan == 0);
@@ -665,6 +657,6 @@ TEST_CASE("md-hmht: a track survives limit - 1 empty-gate scans as the same trac
     }
   }
   // deletion_misses overrides the paper's limit.
-  CHECK(run_spec("md-hmht:deletion_misses=2", one_target_with_gap(125.0, 20, 10, 12)).tracks.size() == 2);
-  CHECK(run_spec("md-hmht:deletion_misses=6", one_target_with_gap(400.0, 20, 10, 15)).tracks.size() == 1);
+  CHECK(dabench::test::solved_tracks("md-hmht:deletion_misses=2", one_target_with_gap(125.0, 20, 10, 12)).tracks.size() == 2);
+  CHECK(dabench::test::solved_tracks("md-hmht:deletion_misses=6", one_target_with_gap(400.0, 20, 10, 15)).tracks.size() == 1);
 }

@@ -16,6 +16,7 @@
 #include "harness/tracking/metrics.hpp"
 #include "harness/tracking/registry.hpp"
 #include "scenarios/tracking/othr.hpp"
+#include "tests/support/tracker_runs.hpp"
 
 namespace {
 
@@ -33,14 +34,6 @@ dabench::TrackingScenarioSample othr_sample(const std::vector<dabench::KeyValue>
   return sample;
 }
 
-dabench::TrackSet run_mptf(const std::string& spec, const dabench::TrackingProblem& problem) {
-  auto tracker = dabench::make_tracker(spec);
-  dabench::TrackSet tracks;
-  dabench::SolveReport report;
-  tracker->run(problem, tracks, report);
-  REQUIRE(report.skipped.empty());
-  return tracks;
-}
 
 const dabench::othr::OthrMeasurementModel& othr_sensor() {
   static const dabench::othr::OthrMeasurementModel sensor(5.0, 0.001, 0.003);
@@ -212,7 +205,7 @@ TEST_CASE("mptf: without clutter and with pd = 1 every OTHR target gets one accu
   for (std::uint32_t trial = 0; trial < 3; ++trial) {
     INFO("trial " << trial);
     const auto sample = othr_sample({{"pd", "1"}, {"clutter", "0"}}, trial);
-    const dabench::TrackSet tracks = run_mptf("mptf", sample.problem);
+    const dabench::TrackSet tracks = dabench::test::solved_tracks("mptf", sample.problem);
     const auto m = dabench::compute_tracking_metrics(sample.truth, tracks, dabench::TrackingMetricsOptions{});
     CHECK(m.nvt == 4.0);
     CHECK(m.nft == 0.0);
@@ -251,7 +244,7 @@ TEST_CASE("mptf: tracks end miss_limit scans after the last detection, 3 or 5 by
   for (const Case& c : {Case{125.0, "mptf", 11}, Case{400.0, "mptf", 13}, Case{400.0, "mptf:deletion_misses=4", 12}}) {
     INFO("clutter " << c.clutter << " spec " << c.spec);
     problem.clutter_mean = c.clutter;
-    const dabench::TrackSet tracks = run_mptf(c.spec, problem);
+    const dabench::TrackSet tracks = dabench::test::solved_tracks(c.spec, problem);
     int confirmed = 0;
     for (const dabench::Track& track : tracks.tracks) {
       if (!track.confirmed) continue;
@@ -287,8 +280,8 @@ TEST_CASE("mptf: registry builds from a SPEC and rejects bad options", "[mptf]")
 
 TEST_CASE("mptf: same input gives identical tracks", "[mptf]") {
   const auto sample = othr_sample({{"pd", "0.75"}, {"clutter", "125"}}, 7);
-  const dabench::TrackSet a = run_mptf("mptf", sample.problem);
-  const dabench::TrackSet b = run_mptf("mptf", sample.problem);
+  const dabench::TrackSet a = dabench::test::solved_tracks("mptf", sample.problem);
+  const dabench::TrackSet b = dabench::test::solved_tracks("mptf", sample.problem);
   REQUIRE(a.tracks.size() == b.tracks.size());
   REQUIRE(!a.tracks.empty());
   for (std::size_t i = 0; i < a.tracks.size(); ++i) {
