@@ -11,6 +11,7 @@
 #include "harness/core/row_fields.hpp"
 #include "harness/multi_scan/particle_metrics.hpp"
 #include "harness/multi_scan/registry.hpp"
+#include "harness/run/trial_draw.hpp"
 
 namespace dabench {
 
@@ -52,11 +53,8 @@ MultiScanWorker MultiScanExecution::make_worker() const {
 
 void MultiScanExecution::run_item(MultiScanWorker& worker, long long item, std::size_t first_algorithm,
                                   std::size_t end_algorithm) const {
-  const auto point = static_cast<std::uint32_t>(item / plan_.trials);
-  const auto trial = static_cast<std::uint32_t>(item % plan_.trials);
   const auto start = Clock::now();
-  RandomStream rng(plan_.seed, point, trial);
-  scenarios_[point]->generate(rng, worker.sample);
+  const auto [point, trial] = draw_trial(plan_, scenarios_, item, worker.sample);
   const MultiScanProblem& problem = worker.sample.problem;
   const int n = problem.tracks();
   const double nan = std::numeric_limits<double>::quiet_NaN();

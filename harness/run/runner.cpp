@@ -188,33 +188,30 @@ std::string receive_polling(const MpiTransport& mpi, int source, int tag) {
   }
 }
 
+// The experiment's scenario from `registry`, created once per sweep point with its settings.
+template <class Registry>
+auto point_scenarios(const Registry& registry, const RunPlan& plan) {
+  const auto* entry = registry.find(plan.experiment.scenario);
+  std::vector<decltype(entry->create(plan.point_settings.front()))> scenarios;
+  for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
+  return scenarios;
+}
+
 // Builds the execution of the plan's kind and calls body(execution).
 template <class Body>
 double with_execution(const RunPlan& plan, Body&& body) {
   if (plan.kind == RunKind::tracking) {
-    std::vector<std::unique_ptr<TrackingScenario>> scenarios;
-    const auto* entry = tracking_scenario_registry().find(plan.experiment.scenario);
-    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-    return body(TrackingExecution(plan, std::move(scenarios),
+    return body(TrackingExecution(plan, point_scenarios(tracking_scenario_registry(), plan),
                                   make_options<TrackingMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
   }
   if (plan.kind == RunKind::tbd) {
-    std::vector<std::unique_ptr<TbdScenario>> scenarios;
-    const auto* entry = tbd_scenario_registry().find(plan.experiment.scenario);
-    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-    return body(TbdExecution(plan, std::move(scenarios),
+    return body(TbdExecution(plan, point_scenarios(tbd_scenario_registry(), plan),
                              make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
   }
   if (plan.kind == RunKind::multi_scan) {
-    std::vector<std::unique_ptr<MultiScanScenario>> scenarios;
-    const auto* entry = multi_scan_scenario_registry().find(plan.experiment.scenario);
-    for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-    return body(MultiScanExecution(plan, std::move(scenarios)));
+    return body(MultiScanExecution(plan, point_scenarios(multi_scan_scenario_registry(), plan)));
   }
-  std::vector<std::unique_ptr<SingleScanScenario>> scenarios;
-  const auto* entry = scenario_registry().find(plan.experiment.scenario);
-  for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-  return body(SingleScanExecution(plan, std::move(scenarios)));
+  return body(SingleScanExecution(plan, point_scenarios(scenario_registry(), plan)));
 }
 
 // Runs a chunk's units into worker.texts (cleared first) and their times into unit_seconds.

@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "harness/core/random_stream.hpp"
 #include "harness/core/row_fields.hpp"
+#include "harness/run/trial_draw.hpp"
 #include "harness/single_scan/marginal_errors.hpp"
 #include "harness/single_scan/registry.hpp"
 
@@ -35,11 +35,8 @@ SingleScanWorker SingleScanExecution::make_worker() const {
 }
 
 void SingleScanExecution::run_item(SingleScanWorker& worker, long long item) const {
-  const auto point = static_cast<std::uint32_t>(item / plan_.trials);
-  const auto trial = static_cast<std::uint32_t>(item % plan_.trials);
   const auto start = Clock::now();
-  RandomStream rng(plan_.seed, point, trial);
-  scenarios_[point]->generate(rng, worker.sample);
+  const auto [point, trial] = draw_trial(plan_, scenarios_, item, worker.sample);
   worker.sample.problem.trial_key = {plan_.seed, point, trial};
   const SingleScanProblem& problem = worker.sample.problem;
   const std::size_t count = worker.solvers.size();

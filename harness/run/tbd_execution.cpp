@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "harness/core/row_fields.hpp"
+#include "harness/run/trial_draw.hpp"
 #include "harness/tbd/registry.hpp"
 
 namespace dabench {
@@ -86,11 +87,8 @@ void TbdExecution::run_tracker(TbdWorker& worker, std::size_t a, bool keep_estim
 
 void TbdExecution::run_item(TbdWorker& worker, long long item, std::size_t first_algorithm,
                             std::size_t end_algorithm) const {
-  const auto point = static_cast<std::uint32_t>(item / plan_.trials);
-  const auto trial = static_cast<std::uint32_t>(item % plan_.trials);
   const auto start = Clock::now();
-  RandomStream rng(plan_.seed, point, trial);
-  scenarios_[point]->generate(rng, worker.sample);
+  const auto [point, trial] = draw_trial(plan_, scenarios_, item, worker.sample);
   worker.sample.problem.trial_key = {plan_.seed, point, trial};
   const TbdProblem& problem = worker.sample.problem;
   const TbdTruth& truth = worker.sample.truth;

@@ -9,6 +9,7 @@
 #include "harness/core/csv.hpp"
 #include "harness/core/errors.hpp"
 #include "harness/core/row_fields.hpp"
+#include "harness/run/trial_draw.hpp"
 #include "harness/tracking/registry.hpp"
 
 namespace dabench {
@@ -115,11 +116,8 @@ void TrackingExecution::score_history(TrackingWorker& worker, std::size_t a, con
 
 void TrackingExecution::run_item(TrackingWorker& worker, long long item, std::size_t first_algorithm,
                                  std::size_t end_algorithm) const {
-  const auto point = static_cast<std::uint32_t>(item / plan_.trials);
-  const auto trial = static_cast<std::uint32_t>(item % plan_.trials);
   const auto start = Clock::now();
-  RandomStream rng(plan_.seed, point, trial);
-  scenarios_[point]->generate(rng, worker.sample);
+  const auto [point, trial] = draw_trial(plan_, scenarios_, item, worker.sample);
   const TrackingProblem& problem = worker.sample.problem;
   const TrackingTruth& truth = worker.sample.truth;
   const int scans = problem.scan_count();
