@@ -323,12 +323,24 @@ def exactness_claim(cid, statement, row, column, where, trials=None):
                  f"{value:.2g} over {row['ok'] if trials is None else trials} trials", verdict, where)
 
 
+def front_claim(panels):
+    """Ours: BP is on the Pareto front of every panel (no competing method beats it on both axes)."""
+    beaten = {p: dominated_beyond_error(by[BP], by) if BP in by else [] for p, by in panels.items()}
+    beaten = {p: b for p, b in beaten.items() if b or BP not in panels[p] or not competing(panels[p][BP])}
+    fronts = len(panels) - len(beaten)
+    claim = Claim("F1", "BP is on the Pareto front of every panel: no complete method is both faster (median time) "
+                  "and more accurate (mean max error, beyond error)", "ours", "–",
+                  f"on the front in {fronts} of {len(panels)} panels",
+                  verdicts.AGREES if not beaten else verdicts.DIFFERS,
+                  f"dominance beyond error: faster median time and a mean max error lower by more than "
+                  f"{verdicts.Z:g} combined standard errors")
+    claim.details += [f"{p}: beaten by " + ", ".join(f"`{b}`" for b in by) for p, by in beaten.items()]
+    return claim
+
+
 def speed_claim(cid, statement, rows, expect_lower):
     """The first of a pair is faster (expect_lower) or slower at the points of some panels."""
-    lower, higher, n = 0, 0, 0
-    for r in rows:
-        lo, hi, k = tally([r])
-        lower, higher, n = lower + lo, higher + hi, n + k
+    lower, higher, n = tally(rows)
     favourable, against = (lower, higher) if expect_lower else (higher, lower)
     if n == 0:
         verdict = verdicts.NOT_RUN
@@ -386,20 +398,7 @@ def checks(report):
         report.value(f"panel_{k}", panel)
     report.value("bp_error_matrix", bp_matrix(paired, names, "max_error"))
     report.value("bp_time_matrix", bp_matrix(paired, names, "time_us"))
-    for spec in ("bp",):
-        fronts = [p for p, by in panels.items() if spec in by and competing(by[spec])
-                  and not dominated_beyond_error(by[spec], by)]
-        beaten = [p for p in names if p not in fronts]
-        verdict = verdicts.AGREES if not beaten else verdicts.DIFFERS
-        claim = Claim("F1", "BP is on the Pareto front of every panel: no complete method is both faster (median time) "
-                      "and more accurate (mean max error, beyond error)", "ours", "–",
-                      f"on the front in {len(fronts)} of {len(names)} panels", verdict,
-                      f"dominance beyond error: faster median time and a mean max error lower by more than "
-                      f"{verdicts.Z:g} combined standard errors")
-        for p in beaten:
-            claim.details.append(f"{p}: beaten by " + ", ".join(f"`{b}`" for b in dominated_beyond_error(panels[p][spec],
-                                                                                                        panels[p])))
-        report.claim(claim)
+    report.claim(front_claim(panels))
     accuracy_ids = []
     approximations = [b for (a, b, m) in paired if a == BP and m == "max_error"
                       and b.split(":")[0] not in ("ehm", "permanent")]  # exact: error is the reference threshold's
