@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "harness/core/special_values.hpp"
 #include "harness/single_scan/registry.hpp"
 
 namespace dabench {
@@ -90,85 +89,20 @@ void MapAssignment::solve_cluster(const SingleScanProblem& problem, const Associ
     arc_start_[r + 1] = static_cast<int>(arc_cost_.size());
   }
 
-  row_dual_.assign(rows_, 0.0);
-  column_dual_.assign(columns, 0.0);
-  column_of_row_.assign(rows_, -1);
-  row_of_column_.assign(columns, -1);
-  path_row_.assign(columns, -1);
-  distance_.assign(columns, kInfinity);
-  settled_.assign(columns, 0);
-  for (int r = 0; r < rows_; ++r) augment_row(r);
+  // Zero potentials are dual feasible on the shifted costs. The start row's own dummy column is
+  // always free and reachable, so every search succeeds.
+  search_.reset(rows_, columns);
+  const auto sparse_row = [this](int row, auto&& relax) {
+    for (int k = arc_start_[row]; k < arc_start_[row + 1]; ++k) relax(arc_column_[k], arc_cost_[k]);
+  };
+  for (int r = 0; r < rows_; ++r) {
+    [[maybe_unused]] const bool matched = search_.augment(r, sparse_row);
+  }
 
   for (int r = 0; r < rows_; ++r) {
-    const int column = column_of_row_[r];
+    const int column = search_.column_of_row(r);
     if (column < measurement_columns_) assignment[targets[first + r]] = column_measurement_[column];
   }
-}
-
-// One shortest augmenting path from the free row `start` (Crouse 2016, Alg. 1 steps with
-// sparse rows): Dijkstra over reduced costs c_ij − u_i − v_j ≥ 0, settling one column at a time
-// until a free column is settled; then the dual update and the augmentation. The start row's
-// own dummy column is always free and reachable, so the search always ends.
-void MapAssignment::augment_row(int start) {
-  frontier_.clear();
-  visited_rows_.clear();
-  settled_columns_.clear();
-  double reached = 0.0;  // distance of the last settled column
-  int row = start;
-  int sink = -1;
-  while (sink < 0) {
-    visited_rows_.push_back(row);
-    const double base = reached - row_dual_[row];
-    for (int k = arc_start_[row]; k < arc_start_[row + 1]; ++k) {
-      const int column = arc_column_[k];
-      if (settled_[column]) continue;
-      const double candidate = base + arc_cost_[k] - column_dual_[column];
-      if (candidate < distance_[column]) {
-        if (distance_[column] == kInfinity) frontier_.push_back(column);
-        distance_[column] = candidate;
-        path_row_[column] = row;
-      }
-    }
-    // The closest unsettled column; among equals a free one, then the earliest reached.
-    int best = 0;
-    for (int f = 1; f < static_cast<int>(frontier_.size()); ++f) {
-      const double d = distance_[frontier_[f]];
-      const double b = distance_[frontier_[best]];
-      if (d < b || (d == b && row_of_column_[frontier_[f]] < 0 && row_of_column_[frontier_[best]] >= 0)) best = f;
-    }
-    const int column = frontier_[best];
-    frontier_.erase(frontier_.begin() + best);
-    reached = distance_[column];
-    settled_[column] = 1;
-    settled_columns_.push_back(column);
-    if (row_of_column_[column] < 0) {
-      sink = column;
-    } else {
-      row = row_of_column_[column];
-    }
-  }
-
-  // Dual update (keeps c − u − v ≥ 0 everywhere and = 0 on the matching).
-  row_dual_[start] += reached;
-  for (const int r : visited_rows_) {
-    if (r != start) row_dual_[r] += reached - distance_[column_of_row_[r]];
-  }
-  for (const int column : settled_columns_) column_dual_[column] -= reached - distance_[column];
-
-  // Augment along the predecessor chain.
-  for (int column = sink;;) {
-    const int r = path_row_[column];
-    row_of_column_[column] = r;
-    std::swap(column_of_row_[r], column);
-    if (r == start) break;
-  }
-
-  // Reset the per-search marks of every column touched (settled or still in the frontier).
-  for (const int column : settled_columns_) {
-    settled_[column] = 0;
-    distance_[column] = kInfinity;
-  }
-  for (const int column : frontier_) distance_[column] = kInfinity;
 }
 
 void MapAssociation::solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) {

@@ -13,19 +13,19 @@
 // components of the gating graph (AssociationGraph clusters), so each cluster is solved on its
 // own: a large sparse problem costs the sum of its small clusters.
 //
-// Algorithm: shortest augmenting paths with dual potentials — the augmentation phase of
-// Jonker & Volgenant (Computing 38, 1987) in the rectangular form of Crouse ("On implementing
-// 2D rectangular assignment algorithms", IEEE TAES 52(4), 2016), run over the sparse arc list
-// of each row (the gated measurements plus the row's own dummy). One Dijkstra search per row,
-// so O(R·(E_c + R·C)) per cluster at worst (R rows, C columns, E_c arcs), O(n³) for a dense
-// n×n block. Chosen over an ε-scaling auction because it is exact for real-valued costs
+// Algorithm: shortest augmenting paths with dual potentials (harness/core/
+// shortest_augmenting_path.hpp, shared with the dense LinearAssignment), run over the sparse
+// arc list of each row (the gated measurements plus the row's own dummy). One Dijkstra search
+// per row, so O(R·(E_c + R·C)) per cluster at worst (R rows, C columns, E_c arcs), O(n³) for a
+// dense n×n block. Chosen over an ε-scaling auction because it is exact for real-valued costs
 // (auction is exact only once ε·n is below the gap to the second-best assignment, which real
 // log-likelihoods do not bound) and needs no tuning. Costs are shifted per row to be ≥ 0
 // (c_ij − min(0, min_j' c_ij'), a per-row constant that does not change the optimum), so the
 // initial zero potentials are dual feasible.
 //
 // Ties: any maximiser, deterministically (the search order is fixed by the problem's indices;
-// among equal tentative distances a free column is preferred, then the earliest reached).
+// among equal tentative distances a free column is preferred, then the earliest reached:
+// TieOrder::first_reached).
 // Output of the registered algorithm `map`: 0/1 marginals of the MAP event (each row holds a
 // single 1). MCMCDA (algorithms/single_scan/mcmcda.hpp) reuses MapAssignment for its initial state.
 #include <string>
@@ -34,6 +34,7 @@
 
 #include "algorithms/single_scan/association_graph.hpp"
 #include "harness/core/params.hpp"
+#include "harness/core/shortest_augmenting_path.hpp"
 #include "harness/single_scan/solver.hpp"
 
 namespace dabench {
@@ -48,7 +49,6 @@ class MapAssignment {
  private:
   void solve_cluster(const SingleScanProblem& problem, const AssociationGraph& graph, int first, int last,
                      std::vector<int>& assignment);
-  void augment_row(int row);
 
   // Current cluster, local indices: rows 0..R-1, columns 0..M-1 the measurements, M+r the
   // dummy ("missed") column of row r.
@@ -60,17 +60,7 @@ class MapAssignment {
   std::vector<int> column_measurement_;  // local measurement column → global measurement
   std::vector<int> local_column_;   // global measurement → local column (valid where stamp matches)
   std::vector<int> column_stamp_;   // global measurement → cluster index + 1 that mapped it
-  // Shortest augmenting path state.
-  std::vector<double> row_dual_;    // u
-  std::vector<double> column_dual_; // v
-  std::vector<int> column_of_row_;
-  std::vector<int> row_of_column_;
-  std::vector<int> path_row_;       // predecessor row of each reached column
-  std::vector<double> distance_;    // tentative shortest-path cost per column (+inf = unreached)
-  std::vector<char> settled_;
-  std::vector<int> frontier_;       // reached, unsettled columns
-  std::vector<int> visited_rows_;
-  std::vector<int> settled_columns_;
+  ShortestAugmentingPath<TieOrder::first_reached> search_;
 };
 
 struct MapOptions {

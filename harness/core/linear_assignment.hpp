@@ -10,20 +10,15 @@
 // forbidden pair, never assigned: if no assignment avoids every forbidden pair, solve() returns
 // false (never a wrong answer). Negative finite costs are allowed; NaN and −∞ entries are not.
 //
-// Algorithm: shortest augmenting paths with dual potentials — the augmentation phase of
-// Jonker & Volgenant (Computing 38, 1987) in the rectangular form of Crouse ("On implementing
-// 2D rectangular assignment algorithms", IEEE TAES 52(4), 2016: its shortest augmenting path
-// algorithm and dual update). Rows are added one at a time; each is matched by one Dijkstra
-// search over the reduced costs c(r, j) − u_r − v_j ≥ 0 from the new row to the nearest free
-// column, after which the potentials are updated and the path flipped. The row potentials
-// start at the row minima (u_r = min_j c(r, j), v = 0): this shifts each row by a constant,
-// leaves the optimum unchanged and makes every reduced cost non-negative from the start, so
-// negative costs need no copy. Infeasibility is exact: when the search from row r reaches no
-// free column through finite entries, there is no augmenting path for the matching of rows
-// 0..r−1, so (Berge) no matching avoiding the forbidden pairs covers rows 0..r. Chosen over an
-// ε-scaling auction because it is exact for real costs and needs no tuning;
-// algorithms/single_scan/map_association.hpp runs a sparse variant of the same method on
-// association events.
+// Algorithm: shortest augmenting paths with dual potentials (harness/core/
+// shortest_augmenting_path.hpp, shared with the sparse MAP search of
+// algorithms/single_scan/map_association.hpp): rows are added one at a time, each matched by one
+// Dijkstra search over the reduced costs. The row potentials start at the row minima (u_r =
+// min_j c(r, j), v = 0): this shifts each row by a constant, leaves the optimum unchanged and
+// makes every reduced cost non-negative from the start, so negative costs need no copy.
+// Infeasibility is exact: when the search from row r reaches no free column through finite
+// entries, no matching avoiding the forbidden pairs covers rows 0..r. Chosen over an ε-scaling
+// auction because it is exact for real costs and needs no tuning.
 //
 // Cost: O(min(R,C)² · max(R,C)) time (one search per row of the smaller side, each settling at
 // most one column more than there are matched rows, at O(max(R,C)) per settled column);
@@ -33,13 +28,15 @@
 // not overflow (|c| ≤ 1e300, say): an overflow to +∞ reads as a forbidden pair.
 //
 // Ties: deterministic for a given matrix — rows are added in index order; a search settles the
-// column of least tentative distance, among equals a free column, then the lowest index (so a
-// constant square matrix gives the identity). Any optimum may be returned when several exist;
+// column of least tentative distance, among equals a free column, then the lowest index
+// (TieOrder::lowest_column: a constant square matrix gives the identity). Any optimum may be returned when several exist;
 // the total is optimal up to floating-point rounding of the reduced costs.
 //
 // Used by the GOSPA metric (harness/tbd/gospa.hpp) and as the inner solver of Murty's k-best
 // assignment (algorithms/assignment/murty.hpp) for MD-HMHT and k-best JPDA.
 #include <vector>
+
+#include "harness/core/shortest_augmenting_path.hpp"
 
 namespace dabench {
 
@@ -54,21 +51,11 @@ class LinearAssignment {
   [[nodiscard]] bool solve(const double* cost, int rows, int cols, std::vector<int>& column_of_row, double& total_cost);
 
  private:
-  // The R ≤ C problem on `cost` (rows × cols, row-major); result in column_of_row_.
+  // The R ≤ C problem on `cost` (rows × cols, row-major); the matching in search_.
   [[nodiscard]] bool solve_wide(const double* cost, int rows, int cols);
-  // One shortest augmenting path from the free row `start`; false if no free column is reachable.
-  [[nodiscard]] bool augment(const double* cost, int cols, int start);
 
   std::vector<double> transposed_;  // cols × rows copy when rows > cols
-  std::vector<double> row_dual_;    // u
-  std::vector<double> column_dual_; // v
-  std::vector<int> column_of_row_;
-  std::vector<int> row_of_column_;
-  std::vector<int> path_row_;       // predecessor row of each reached column
-  std::vector<double> distance_;    // tentative shortest-path cost per column (+∞ = unreached)
-  std::vector<char> settled_;
-  std::vector<int> visited_rows_;
-  std::vector<int> settled_columns_;
+  ShortestAugmentingPath<TieOrder::lowest_column> search_;
 };
 
 }  // namespace dabench
