@@ -3,7 +3,6 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <limits>
 
 namespace dabench {
@@ -305,15 +304,7 @@ bool ColumnDualSolver::presolve(int new_scan, SolveReport& report) {
   return true;
 }
 
-void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& report) {
-  settings_ = settings;
-  const Eigen::Index size = sigma_.size();
-  const DualMethod method = settings.method != DualMethod::kAuto ? settings.method
-                            : size <= settings.newton_limit      ? DualMethod::kNewton
-                                                                 : DualMethod::kLbfgs;
-  if (report.line_search_steps < 0) report.line_search_steps = 0;
-  const auto gamma_scans = std::count_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return scan.gamma > 0.0; });
-  if (gamma_scans > 1) settings_.inner.tolerance = std::max(settings.inner.tolerance, kInnerForcing);
+bool ColumnDualSolver::evaluate_start(SolveReport& report) {
   const auto unsolved_scans = std::count_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return !scan.solved; });
   // After the presolve the tracks hold σ's evaluation with the new scan in their inner sets; when
   // that is their inner set anyway (the new scan is the γ-scan, as in cvs) the other scans'
@@ -324,16 +315,24 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
         std::find_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return !scan.solved; }) - scans_.begin());
     inner_sets_evaluated = presolve(new_scan, report) && scans_[new_scan].gamma > 0.0 && only_gamma_scan(new_scan);
   }
+  if (!inner_sets_evaluated) return evaluate(sigma_);
+  return evaluate_inner_value(sigma_) && (finish_gradient(), gradient_.allFinite());
+}
+
+void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& report) {
+  settings_ = settings;
+  const Eigen::Index size = sigma_.size();
+  const DualMethod method = settings.method != DualMethod::kAuto ? settings.method
+                            : size <= settings.newton_limit      ? DualMethod::kNewton
+                                                                 : DualMethod::kLbfgs;
+  if (report.line_search_steps < 0) report.line_search_steps = 0;
+  const auto gamma_scans = std::count_if(scans_.begin(), scans_.end(), [](const Scan& scan) { return scan.gamma > 0.0; });
+  if (gamma_scans > 1) settings_.inner.tolerance = std::max(settings.inner.tolerance, kInnerForcing);
   // Every failed evaluation ends the solve as skipped:numerical: the tracks' state is then not a
   // solution at any σ, and no belief may be written from it.
   const auto numerical_failure = [&report] { report.skipped = "numerical"; };
-  if (inner_sets_evaluated ? !(evaluate_inner_value(sigma_) && (finish_gradient(), gradient_.allFinite()))
-                           : !evaluate(sigma_)) {
-    numerical_failure();
-    return;
-  }
-  std::deque<std::pair<Vector, Vector>> history;  // L-BFGS (s, y) pairs of −D
-  Vector direction, trial, previous_gradient, scaling;
+  if (!evaluate_start(report)) return numerical_failure();
+  lbfgs_history_.clear();
   int iterations = 0;
   bool converged = false;
   while (true) {
@@ -358,74 +357,27 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
     }
     if (iterations >= settings.max_iterations) break;
     if (method == DualMethod::kNewton) {
-      newton_direction(direction);
+      newton_direction(direction_);
     } else {
-      // Two-loop recursion on −D: gradient −r, direction H r with H₀ = diag(K)⁻¹.
-      diagonal_scaling(scaling);
-      Vector q = gradient_;
-      std::vector<double> alpha(history.size());
-      for (std::size_t k = history.size(); k-- > 0;) {
-        const auto& [s, y] = history[k];
-        alpha[k] = s.dot(q) / y.dot(s);
-        q -= alpha[k] * y;
-      }
-      direction = scaling.cwiseProduct(q);
-      for (std::size_t k = 0; k < history.size(); ++k) {
-        const auto& [s, y] = history[k];
-        direction += s * (alpha[k] - y.dot(direction) / y.dot(s));
-      }
+      lbfgs_direction(direction_);
+      limit_step(direction_);
     }
-    if (method == DualMethod::kLbfgs) limit_step(direction);
-    double slope = gradient_.dot(direction);
+    double slope = gradient_.dot(direction_);
     if (!(slope > 0.0)) {  // not an ascent direction (rounding): scaled gradient instead
-      diagonal_scaling(scaling);
-      direction = scaling.cwiseProduct(gradient_);
-      limit_step(direction);
-      slope = gradient_.dot(direction);
-      history.clear();
+      diagonal_scaling(scaling_);
+      direction_ = scaling_.cwiseProduct(gradient_);
+      limit_step(direction_);
+      slope = gradient_.dot(direction_);
+      lbfgs_history_.clear();
     }
-    const double value = value_;
-    const double residual_norm = gradient_.norm();
-    previous_gradient = gradient_;
-    // D's floating-point resolution: below it, the test is a decrease of ‖r‖.
-    const double resolution = 1e-14 * (1.0 + std::abs(value));
-    const bool predicted = matrix_sigma_.size() == size;
-    double step = 1.0;
-    bool accepted = false;
-    while (step >= kSmallestStep) {
-      trial = sigma_ + step * direction;
-      if (predicted) {
-        step_ = trial - matrix_sigma_;
-        for (TiltedTrack& track : tracks_) track.guess_inner(step_);
-      }
-      if (evaluate_value(trial)) {
-        const double gain = value_ - value;
-        if (gain >= kArmijo * step * slope) {
-          finish_gradient();
-          accepted = gradient_.allFinite();
-        } else if (std::abs(gain) <= resolution && kArmijo * step * slope <= resolution) {
-          finish_gradient();
-          accepted = gradient_.allFinite() && gradient_.norm() < residual_norm;
-        }
-        if (accepted) break;
-      }
-      ++report.line_search_steps;
-      step *= 0.5;
-    }
+    previous_gradient_ = gradient_;
     ++iterations;
-    if (!accepted) {  // no progress at floating-point resolution: stay at the last point
+    if (!line_search(slope, report)) {  // no progress at floating-point resolution: stay at the last point
       if (!evaluate(sigma_)) return numerical_failure();
       break;
     }
-    if (method == DualMethod::kLbfgs) {
-      Vector s = trial - sigma_;
-      Vector y = previous_gradient - gradient_;
-      if (s.dot(y) > 1e-12 * s.norm() * y.norm()) {
-        history.emplace_back(std::move(s), std::move(y));
-        if (static_cast<int>(history.size()) > settings.lbfgs_memory) history.pop_front();
-      }
-    }
-    sigma_ = trial;
+    if (method == DualMethod::kLbfgs) remember_step(settings.lbfgs_memory);
+    sigma_ = trial_;
   }
   const double residual = size > 0 ? gradient_.cwiseAbs().maxCoeff() : 0.0;
   const double inner = largest_inner_residual();
@@ -435,6 +387,65 @@ void ColumnDualSolver::solve(const ColumnDualSettings& settings, SolveReport& re
   report.residual = std::isnan(report.residual) ? residual : std::max(report.residual, residual);
   report.inner_residual = std::isnan(report.inner_residual) ? inner : std::max(report.inner_residual, inner);
   if (!converged) report.converged = false;
+}
+
+// Two-loop recursion on −D (Nocedal & Wright, Numerical Optimization, Alg. 7.4): gradient −r,
+// direction H r with H₀ = diag(K)⁻¹.
+void ColumnDualSolver::lbfgs_direction(Vector& direction) {
+  diagonal_scaling(scaling_);
+  Vector q = gradient_;
+  lbfgs_alpha_.resize(lbfgs_history_.size());
+  for (std::size_t k = lbfgs_history_.size(); k-- > 0;) {
+    const auto& [s, y] = lbfgs_history_[k];
+    lbfgs_alpha_[k] = s.dot(q) / y.dot(s);
+    q -= lbfgs_alpha_[k] * y;
+  }
+  direction = scaling_.cwiseProduct(q);
+  for (std::size_t k = 0; k < lbfgs_history_.size(); ++k) {
+    const auto& [s, y] = lbfgs_history_[k];
+    direction += s * (lbfgs_alpha_[k] - y.dot(direction) / y.dot(s));
+  }
+}
+
+void ColumnDualSolver::remember_step(int memory) {
+  Vector s = trial_ - sigma_;
+  Vector y = previous_gradient_ - gradient_;
+  if (s.dot(y) > 1e-12 * s.norm() * y.norm()) {
+    lbfgs_history_.emplace_back(std::move(s), std::move(y));
+    if (static_cast<int>(lbfgs_history_.size()) > memory) lbfgs_history_.pop_front();
+  }
+}
+
+// Backtracking from the full step: the first σ + step · direction_ whose gain in D passes the
+// Armijo test, or, where D's change is below its floating-point resolution, whose gradient is
+// smaller. Warm-starts the tracks' inner unknowns from their first-order model when it is at hand.
+bool ColumnDualSolver::line_search(double slope, SolveReport& report) {
+  const double value = value_;
+  const double residual_norm = gradient_.norm();
+  // D's floating-point resolution: below it, the test is a decrease of ‖r‖.
+  const double resolution = 1e-14 * (1.0 + std::abs(value));
+  const bool predicted = matrix_sigma_.size() == sigma_.size();
+  for (double step = 1.0; step >= kSmallestStep; step *= 0.5) {
+    trial_ = sigma_ + step * direction_;
+    if (predicted) {
+      step_ = trial_ - matrix_sigma_;
+      for (TiltedTrack& track : tracks_) track.guess_inner(step_);
+    }
+    if (evaluate_value(trial_)) {
+      bool accepted = false;
+      const double gain = value_ - value;
+      if (gain >= kArmijo * step * slope) {
+        finish_gradient();
+        accepted = gradient_.allFinite();
+      } else if (std::abs(gain) <= resolution && kArmijo * step * slope <= resolution) {
+        finish_gradient();
+        accepted = gradient_.allFinite() && gradient_.norm() < residual_norm;
+      }
+      if (accepted) return true;
+    }
+    ++report.line_search_steps;
+  }
+  return false;
 }
 
 void ColumnDualSolver::write_beliefs(MultiScanBeliefs& beliefs) const {

@@ -62,6 +62,7 @@
 // Stopping: the largest column residual |r_tj| below `tolerance` and every inner residual
 // |v − log(1 − μ)| below `inner.tolerance`. Near the maximiser D changes by less than its
 // floating-point resolution; a step is then accepted when it lowers ‖r‖ instead.
+#include <deque>
 #include <span>
 #include <vector>
 
@@ -146,7 +147,17 @@ class ColumnDualSolver {
   void split(const Vector& sigma);                  // stacked σ → per-scan vectors for the tracks
   double largest_inner_residual() const;
   void newton_direction(Vector& direction);
+  void lbfgs_direction(Vector& direction);
+  // Adds the last step's pair (s = trial_ − σ, y = −(r change)) to the L-BFGS memory when its
+  // curvature is positive, keeping the `memory` newest.
+  void remember_step(int memory);
+  // Backtracking line search along direction_ (ascent slope `slope` = r · direction_): true with
+  // the accepted point in trial_ and the tracks, value_ and gradient_ evaluated there.
+  [[nodiscard]] bool line_search(double slope, SolveReport& report);
   void diagonal_scaling(Vector& scaling) const;     // 1 / diag(K)
+  // The solve's first evaluation at σ, after the presolve of a lone new scan where it applies;
+  // false if not finite.
+  [[nodiscard]] bool evaluate_start(SolveReport& report);
   // Block Newton on the duals of `scan` alone; true if the tracks hold σ's evaluation after it.
   [[nodiscard]] bool presolve(int scan, SolveReport& report);
   bool only_gamma_scan(int t) const;  // no scan but t has γ > 0
@@ -163,7 +174,10 @@ class ColumnDualSolver {
   ColumnDualSettings settings_;
   Eigen::MatrixXd matrix_;            // K
   Vector matrix_sigma_;               // σ at which the tracks' inner sensitivities were taken
-  Vector step_;                       // workspace
+  // The outer iteration's direction and trial point, and the L-BFGS memory: (s, y) pairs of −D.
+  Vector direction_, trial_, previous_gradient_, scaling_, step_;
+  std::deque<std::pair<Vector, Vector>> lbfgs_history_;
+  std::vector<double> lbfgs_alpha_;
 };
 
 }  // namespace dabench

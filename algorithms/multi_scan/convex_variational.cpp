@@ -134,9 +134,9 @@ void ConvexVariationalPdca::reweight(const std::vector<double>& gamma, const std
     // Theorem 3, eq (91): a shift per (i, j > 0), the same for every hypothesis A.
     for (int i = 0; i < static_cast<int>(scan.log_factor.size()); ++i) {
       for (int j = 1; j <= scan.measurements; ++j) {
-        const double log_unused = std::max(std::log1p(-scan.association(i, j)), kLogProbabilityFloor);
+        const double log_complement = std::max(std::log1p(-scan.association(i, j)), kLogProbabilityFloor);
         const double log_clutter = std::log(scan.clutter[j - 1]);
-        const double shift = delta_gamma * (1.0 + log_unused) - delta_beta * (1.0 + log_clutter);
+        const double shift = delta_gamma * (1.0 + log_complement) - delta_beta * (1.0 + log_clutter);
         scan.log_factor[i].col(j).array() += shift;  // −∞ stays −∞
       }
     }

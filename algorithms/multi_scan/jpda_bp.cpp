@@ -1,9 +1,6 @@
 #include "algorithms/multi_scan/jpda_bp.hpp"
 
-#include <fmt/format.h>
-
 #include "harness/multi_scan/registry.hpp"
-#include "harness/single_scan/registry.hpp"
 
 namespace dabench {
 
@@ -14,8 +11,7 @@ std::string JpdaBpOptions::validate() const {
 }
 
 JpdaBp::JpdaBp(const Options& options)
-    : options_(options),
-      bp_(make_single_scan_solver(fmt::format("bp:delta={},max_iterations={}", options.delta, options.max_iterations))) {}
+    : options_(options), bp_(BpOptions{.delta = options.delta, .max_iterations = options.max_iterations}) {}
 
 void JpdaBp::solve(const MultiScanProblem& problem, MultiScanBeliefs& beliefs, SolveReport& report) {
   report.reset();
@@ -40,7 +36,7 @@ void JpdaBp::solve(const MultiScanProblem& problem, MultiScanBeliefs& beliefs, S
       for (int j = 1; j <= m; ++j) scan_problem_.psi(i, j - 1) = weights_(i, j) / weights_(i, 0);
     }
     MarginalTable& marginals = beliefs.association[t];
-    bp_->solve(scan_problem_, marginals, scan_report);
+    bp_.solve(scan_problem_, marginals, scan_report);
     if (!scan_report.skipped.empty()) {
       report.skipped = scan_report.skipped;
       return;

@@ -17,14 +17,13 @@
 // (the exact Bayes posterior). A track whose w^{i,0} is 0 (a scan no track can miss) cannot be
 // put in the ψ_i(0) = 1 form: the solve is skipped (skipped:zero_miss_weight).
 // Report: iterations = total BP iterations over the scans, converged = every BP converged.
-#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "algorithms/single_scan/bp.hpp"
 #include "harness/core/params.hpp"
 #include "harness/multi_scan/solver.hpp"
-#include "harness/single_scan/solver.hpp"
 
 namespace dabench {
 
@@ -51,7 +50,7 @@ class JpdaBp final : public MultiScanSolver {
 
  private:
   Options options_;
-  std::unique_ptr<SingleScanSolver> bp_;
+  BeliefPropagation bp_;  // the single-scan BP of step 2, with delta and max_iterations
   SingleScanProblem scan_problem_;
   RowMatrix weights_;  // n × (m + 1): w^{i,j}
 };

@@ -24,10 +24,8 @@
 // with U fixed by the other scans, and log Z from the same sums. finish() then reads the other
 // scans again for their marginals — only for points the solver keeps.
 //
-// Newton matrix (add_newton_matrix). It only steers the steps (the gradient is exact), so it is
-// summed over the hypotheses with q(A) ≥ 1e-8 and, per hypothesis, over the associations of its
-// candidate list with √q(A) p_t(j | A) ≥ 1e-8, and it spans the track's active associations
-// (μ_t(j) ≥ 1e-12; the others would add O(μ)). The within-scan blocks are exact closed forms.
+// Newton matrix (add_newton_matrix): track_newton_matrix.hpp, which also gives the inner solve
+// its cross-scan Jacobian.
 //
 // Numerics (the traps of ../shared/multiscan-fast-solver.md, Risks):
 //  - linear domain over the hypotheses, scaled: per scan the tilts are e^{τ − c_t} with
@@ -44,6 +42,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "algorithms/multi_scan/track_newton_matrix.hpp"
 #include "harness/core/matrix_types.hpp"
 
 namespace dabench {
@@ -94,12 +93,9 @@ class TiltedTrack {
   const Vector& log_marginal(int t) const { return scans_[t].log_marginal; }      // log μ_t(a), a = 0..m_t
   const Vector& log_complement(int t) const { return scans_[t].log_complement; }  // log(1 − μ_t(j)), j = 1..m_t
 
-  // Adds this track's block of the Newton matrix, −∂μ/∂σ with the inner solve eliminated,
-  //   K_i = Σ + Σ_{:,Γ} (I − G S_ΓΓᵀ)⁻¹ G S_{:,Γ}ᵀ,   S = Σ_{:,Γ} diag(1/(1 − μ_Γ)),  G = diag(γ),
-  // to `matrix` (D × D over every scan's measurements, scan t from `offsets[t]`). Σ is the
-  // covariance of the association indicators 1[a_t = j] under q: closed form within a scan,
-  // sums over the hypotheses across scans. Call after finish(). Also records ∂v/∂σ for
-  // guess_inner().
+  // Adds this track's block of the Newton matrix, −∂μ/∂σ with the inner solve eliminated
+  // (TrackNewtonMatrix::add), to `matrix` (D × D over every scan's measurements, scan t from
+  // `offsets[t]`). Call after finish(). Also records ∂v/∂σ for guess_inner().
   void add_newton_matrix(const std::vector<int>& offsets, Eigen::MatrixXd& matrix);
   // Adds −∂μ_t/∂σ_t for scan t alone (the others fixed; t the only scan of the inner set), closed form.
   void add_block_matrix(int t, int offset, Eigen::MatrixXd& matrix) const;
@@ -114,17 +110,20 @@ class TiltedTrack {
   RowMatrix pair_belief(int t) const;
 
  private:
+  friend class TrackNewtonMatrix;  // reads the evaluation, sets the inner unknowns
+
   struct Scan {
     int measurements = 0;
     double gamma = 0.0;
     const RowMatrix* original = nullptr;  // the appended factor (all hypotheses), to re-pack
     std::vector<double> factor;           // ψ_t(A, a), kept hypotheses × (m + 1), column-major
-    // Its candidate associations per kept hypothesis (compressed rows; see candidates_).
+    // Its candidate associations per kept hypothesis (compressed rows; the Newton matrix's
+    // cross-scan sums read only these, see TrackNewtonMatrix).
     std::vector<int> candidate_start;
     std::vector<int> candidate_column;
     std::vector<double> candidate_factor;
     Vector offset;                        // δ_t(j), j = 1..m
-    Vector log_unused;                    // v_t(j), j = 1..m (inner unknowns where γ > 0)
+    Vector inner_log_complement;          // v_t(j), j = 1..m: inner unknowns where γ > 0, log(1 − μ_t(j)) once solved
     std::vector<char> possible;           // column j ≥ 1 is nonzero for some kept hypothesis
     // Last evaluation.
     double shift = 0.0;                   // c_t
@@ -137,7 +136,6 @@ class TiltedTrack {
 
   void repack();
   void pack(Scan& scan) const;                      // factor table, its candidates, `possible`
-  void build_candidates();                          // candidate_start_, candidates_ from the scans' lists
   bool is_inner(const Scan& scan, int j) const { return scan.gamma > 0.0 && scan.possible[j]; }
   void set_tilts(int t, const Vector& sigma);
   [[nodiscard]] bool multiply_evidence(int t, Vector& product, double& log_scale, double& pending);  // evidence of t into the product
@@ -147,14 +145,11 @@ class TiltedTrack {
   TrackEvaluation inner_solve(const std::vector<Vector>& sigma, const InnerSolveSettings& settings);
   double inner_residual(Vector& residual) const;
   void inner_step(const Vector& residual, bool refresh, Vector& step);
-  void inner_unknowns(Vector& v) const;
+  void inner_unknowns(Vector& v) const;  // the inner scans' v, stacked in inner_scans_ order
   void set_inner_unknowns(const Vector& v);
-  // Σ of the association indicators over the active associations (μ ≥ kActiveFloor) into
-  // active_covariance_, their stacked indices (scan t from offsets[t]) in active_index_.
-  void covariance(const std::vector<int>& offsets, int size);
 
   // Storage is kept between problems (scans_ beyond scan_count_, and every buffer's capacity),
-  // so that a run's solver touches no unsolved_scans memory after its first trials.
+  // so that a run's solver allocates nothing after its first trials.
   std::vector<Scan> scans_;
   int scan_count_ = 0;
   Vector prior_;                 // ψ(A), all original hypotheses
@@ -176,41 +171,24 @@ class TiltedTrack {
   double product_log_scale_ = 0.0;
   double log_total_ = 0.0;       // log Σ_A product_(A)
   double log_partition_ = 0.0;
-  // Workspace (sized once per problem size).
-  Vector partial_;
-  Vector column_sum_;
-  Vector tail_;
-  Eigen::MatrixXd jacobian_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> jacobian_factor_;
-  std::vector<int> scan_of_, index_of_, active_;  // inner unknowns: scan, measurement; active ones
-  Vector active_residual_, active_step_;
-  Vector residual_, step_, unknowns_, trial_, trial_residual_;
-  std::vector<int> local_offsets_;
-  std::vector<int> active_index_, active_position_, active_scan_, gamma_column_;
-  Eigen::MatrixXd active_covariance_;
-  Vector active_mu_;
-  // Per kept hypothesis, over all scans in order, the associations j ≥ 1 whose factor is within
-  // kCandidateFloor of its row's largest: the only ones that can reach the matrix's entry floor
-  // at moderate tilts (the matrix only steers the Newton step). Rebuilt after a scan is appended.
-  struct Candidate {
-    int scan;
-    int column;
-    double factor;
-  };
-  std::vector<int> candidate_start_;  // kept + 1 offsets into candidates_
-  std::vector<Candidate> candidates_;
-  bool candidates_valid_ = false;
-  std::vector<int> entry_index_;
-  std::vector<double> entry_value_;
-  std::vector<double> inverse_evidence_;  // row-major kept × scans: 1 / s̃_t(A)
-  std::vector<const double*> tilt_of_scan_;
-  std::vector<double> cross_;         // row-major size × size: Σ_A q p_k p_l for k in a later scan than l
-  // First-order model of the inner unknowns around the last Newton-matrix point.
-  Eigen::MatrixXd inner_sensitivity_;  // ∂v_Γ/∂σ: active γ-unknowns × active associations
-  std::vector<int> sensitivity_rows_;  // the rows' positions among the stacked inner unknowns
-  std::vector<int> sensitivity_columns_;  // the columns' stacked σ indices
-  Vector inner_base_;                  // v at that point
-  bool sensitivity_valid_ = false;
+  // Workspace of the passes over the tables.
+  struct PassWorkspace {
+    Vector column_partial_sums;  // 8 partial sums per column (marginal_pass, column_sums)
+    Vector column_sums;          // Σ_A ψ_t(A, a) q(A) / s̃_t(A) per association a (scan_marginals)
+    Vector suffix_log_sums;      // log Σ_{b ≥ a} e^{x(b)} (log_sums_without)
+  } pass_work_;
+  // Workspace of the inner Newton solve, over the stacked inner unknowns.
+  struct InnerSolveWorkspace {
+    std::vector<int> scan_of, measurement_of;  // per stacked unknown: its scan and measurement
+    std::vector<int> active;                   // the unknowns in the dense solve (μ ≥ 1e-12)
+    std::vector<int> scan_offsets;             // first stacked index of each scan (all scans)
+    Eigen::MatrixXd jacobian;                  // J over the active unknowns
+    Eigen::PartialPivLU<Eigen::MatrixXd> jacobian_factor;
+    Vector active_residual, active_step;       // −F and the Newton step on the active unknowns
+    Vector residual, step, unknowns;           // F(v), the step and v at the current point
+    Vector trial_unknowns, trial_residual;     // the line search's point and its F
+  } inner_work_;
+  TrackNewtonMatrix newton_;
 };
 
 }  // namespace dabench

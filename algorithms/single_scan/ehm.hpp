@@ -132,13 +132,15 @@ class Ehm final : public SingleScanSolver {
   // Returns "" on success, else the skip reason.
   const char* solve_cluster(int first, int last, MarginalTable& marginals);
   void solve_single(int target, MarginalTable& marginals);
+  // The target order and its estimated net (ehm_order.cpp).
   void choose_order();
   void order_greedy(const std::vector<int>& prefix);  // `prefix` first, then the greedy rule
   void order_bfs();
   double order_cost(const std::vector<int>& order, int& widest);
+  // The tree of tracks over the order and the net's per-position tables (ehm.cpp).
   void build_tree();
   int build_tables();  // returns the largest key space
-  // The net of the current cluster (ehm.cpp): run_net = build_net, backward_pass, forward_pass.
+  // The net of the current cluster (ehm_net.cpp): run_net = build_net, backward_pass, forward_pass.
   // Returns "" or the reason the cluster is refused ("work_limit", "numerical").
   template <int W>
   [[nodiscard]] const char* run_net(MarginalTable& marginals);
@@ -162,6 +164,7 @@ class Ehm final : public SingleScanSolver {
   void grow_table(std::int32_t layer_first);
 
   static constexpr double kEstimateMargin = 4.0;  // refuse when the estimate exceeds this × max_nodes
+  static constexpr int kMaxKeyWords = 8;          // key spaces up to 512 shared measurements
 
   Options options_;
   EhmStats stats_;

@@ -32,7 +32,7 @@
 //     prediction — eq (43) with R assumes a converged q(x)); each track takes a UKF update
 //     with its paths' synthetic measurements and a forward step of its meta-state chain
 //     (eq 39 evidence). Measurements outside every live track's gate start new tracks
-//     (algorithms/tracking/jdt_vb_heads.hpp): groups pairwise within ρ = [80 km, 0.005 km/s, 0.03 rad],
+//     (algorithms/tracking/track_heads.hpp): groups pairwise within ρ = [80 km, 0.005 km/s, 0.03 rad],
 //     within a group the path assignment of the most members whose ground states agree (least
 //     mean Mahalanobis distance), every path-shifted reading of those members that fits as
 //     well (our addition: `alternative_heads = 0` starts only the best reading),

@@ -1,5 +1,6 @@
 // The terms of JDT-VB's free energy B (algorithms/tracking/jdt_vb_free_energy_terms.hpp).
 #include "algorithms/tracking/jdt_vb_free_energy_terms.hpp"
+#include "harness/core/special_values.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -7,7 +8,6 @@
 namespace dabench {
 namespace {
 
-const double kLog2Pi = std::log(2.0 * std::numbers::pi);
 
 double xlogx(double p) { return p > 0.0 ? p * std::log(p) : 0.0; }
 

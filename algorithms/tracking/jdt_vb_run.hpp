@@ -15,15 +15,15 @@
 
 #include "algorithms/tracking/chi_square.hpp"
 #include "algorithms/tracking/jdt_vb.hpp"
-#include "algorithms/tracking/jdt_vb_heads.hpp"
 #include "algorithms/tracking/meta_state_chain.hpp"
 #include "algorithms/tracking/multipath_association.hpp"
+#include "algorithms/tracking/track_heads.hpp"
 #include "algorithms/tracking/ukf.hpp"
+#include "harness/core/special_values.hpp"
 
 namespace dabench::jdt_vb_detail {
 
 constexpr double kNoMass = 1e-12;  // a path with less gated mass at a scan gives no synthetic measurement
-inline const double kLog2Pi = std::log(2.0 * std::numbers::pi);
 // Expected clutter per scan assumed when the problem has none: log λ of eq (43) must be finite.
 constexpr double kClutterFloor = 1e-6;
 // Largest p_d used: a miss of an active target must keep a finite χ^{i,0,τ} = log(1 − p_d).

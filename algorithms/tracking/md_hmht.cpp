@@ -14,8 +14,8 @@
 #include <fmt/format.h>
 
 #include "algorithms/tracking/chi_square.hpp"
-#include "algorithms/tracking/jdt_vb_heads.hpp"
 #include "algorithms/tracking/md_hmht_tracks.hpp"
+#include "algorithms/tracking/track_heads.hpp"
 #include "algorithms/assignment/murty.hpp"
 #include "harness/core/errors.hpp"
 #include "harness/tracking/registry.hpp"
@@ -469,7 +469,7 @@ class MdHmhtRun {
   TrackHeadOptions heads_;
   std::vector<Hypothesis> hypotheses_;
   long next_serial_ = 1, next_hypothesis_ = 1;
-  mptf::ScanIndex index_;
+  ScanIndex index_;
   std::unordered_map<long, int> slot_;  // node serial → its prediction this scan
   std::vector<TrackPrediction> predictions_;
   std::map<std::pair<long, std::vector<int>>, NodePtr> updates_;  // (node serial, assignment) → this scan's update

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "algorithms/tracking/chi_square.hpp"
+#include "harness/core/special_values.hpp"
 
 namespace dabench::md_hmht {
 
@@ -12,9 +13,6 @@ namespace {
 
 // Expected clutter per scan assumed when the problem has none, so that ln λ is finite (as jdt-vb).
 constexpr double kClutterFloor = 1e-6;
-const double kLog2Pi = std::log(2.0 * std::numbers::pi);
-
-Eigen::MatrixXd symmetrised(const Eigen::MatrixXd& m) { return 0.5 * (m + m.transpose()); }
 
 }  // namespace
 
@@ -29,7 +27,7 @@ TrackFilter::TrackFilter(const TrackingProblem& problem, double gate_probability
   }
 }
 
-void TrackFilter::predict(const TrackNode& node, const Eigen::MatrixXd& scan, const mptf::ScanIndex& index,
+void TrackFilter::predict(const TrackNode& node, const Eigen::MatrixXd& scan, const ScanIndex& index,
                           TrackPrediction& out) const {
   const Eigen::MatrixXd& F = problem_.transition;
   out.predicted.mean = F * node.estimate.mean;

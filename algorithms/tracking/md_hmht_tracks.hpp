@@ -14,7 +14,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "algorithms/tracking/mptf.hpp"
+#include "algorithms/tracking/scan_index.hpp"
 #include "algorithms/tracking/ukf.hpp"
 #include "harness/tracking/problem.hpp"
 
@@ -64,7 +64,7 @@ class TrackFilter {
   double log_miss(int path) const { return log_miss_[path]; }
 
   // Predicts `node` to the scan `scan` (sorted by `index`) and gates every path.
-  void predict(const TrackNode& node, const Eigen::MatrixXd& scan, const mptf::ScanIndex& index,
+  void predict(const TrackNode& node, const Eigen::MatrixXd& scan, const ScanIndex& index,
                TrackPrediction& out) const;
 
   // The node at scan k after the child's assignment: measurement_of_path[τ] is a column gated by

@@ -45,17 +45,6 @@ Matrix4 symmetrised(const Matrix4& m) { return 0.5 * (m + m.transpose()); }
 
 }  // namespace
 
-void ScanIndex::build(const Eigen::MatrixXd& scan) {
-  const int m = static_cast<int>(scan.cols());
-  order.resize(m);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return scan(0, a) < scan(0, b) || (scan(0, a) == scan(0, b) && a < b);
-  });
-  range.resize(m);
-  for (int i = 0; i < m; ++i) range[i] = scan(0, order[i]);
-}
-
 int pda_update(Estimate& track, const Eigen::MatrixXd& scan, const ScanIndex& index, const PdaModel& model,
                PdaScratch& scratch, std::vector<char>& gated) {
   const Eigen::Vector3d predicted = track.mean.head<3>();
@@ -617,7 +606,7 @@ class MptfRun {
   mptf::PdaModel pda_;
   double pair_gate_ = 0.0, azimuth_gate_ = 0.0, merge_gate_ = 0.0;
   Matrix4 F_, Q_;
-  mptf::ScanIndex index_;
+  ScanIndex index_;
   mptf::PdaScratch scratch_;
   std::vector<char> gated_;
   std::vector<SlantTrack> slant_;

@@ -106,6 +106,7 @@
 
 #include <Eigen/Core>
 
+#include "algorithms/tracking/scan_index.hpp"
 #include "harness/core/params.hpp"
 #include "harness/tracking/tracker.hpp"
 
@@ -147,13 +148,6 @@ using Matrix4 = Eigen::Matrix4d;
 struct Estimate {
   Vector4 mean;
   Matrix4 covariance;
-};
-
-// One scan's measurements ordered by slant range, for gating by binary search.
-struct ScanIndex {
-  std::vector<int> order;     // measurement columns by increasing range
-  std::vector<double> range;  // their ranges
-  void build(const Eigen::MatrixXd& scan);
 };
 
 // The model a PDA update needs.

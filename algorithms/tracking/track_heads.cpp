@@ -1,4 +1,4 @@
-#include "algorithms/tracking/jdt_vb_heads.hpp"
+#include "algorithms/tracking/track_heads.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,7 @@
 #pragma once
 // Track heads of JDT-VB (jdt-vb-multipath-othr, Sec. III-E): new tracks started from the
-// measurements of one scan that no existing track gates.
+// measurements of one scan that no existing track gates. The OTHR trackers' shared initiator:
+// JDT-VB (jdt_vb_run.hpp) and MD-HMHT (md_hmht.cpp) start the same heads from the same scan.
 //  - Grouping: the candidates form a pool in increasing first measurement component (slant
 //    range). The first of the pool seeds a group and, in that order, the group takes every
 //    later candidate within `threshold` (per component, |Δy| ≤ ρ) of all members so far, up to

@@ -47,8 +47,6 @@ SigmaPoints sigma_points(const Gaussian& x, const UnscentedOptions& o, int scan)
   return s;
 }
 
-Eigen::MatrixXd symmetrised(const Eigen::MatrixXd& m) { return 0.5 * (m + m.transpose()); }
-
 UnscentedTransform transform(const Gaussian& x, const std::function<Vector(const Vector&)>& g,
                              const UnscentedOptions& options, int scan) {
   const SigmaPoints s = sigma_points(x, options, scan);

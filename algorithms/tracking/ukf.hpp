@@ -69,6 +69,9 @@ struct ScanMeasurement {
   Eigen::MatrixXd covariance; // R_k
 };
 
+// (M + Mᵀ)/2: a covariance update's rounding asymmetry removed.
+inline Eigen::MatrixXd symmetrised(const Eigen::MatrixXd& m) { return 0.5 * (m + m.transpose()); }
+
 // Filtered estimates p(x_k | y_0..k) for k = 0..K−1, starting from `prior` = p(x_0).
 // `first_scan`: the run's number of scans[0], for failure messages.
 std::vector<Gaussian> unscented_filter(const Gaussian& prior, const std::vector<std::optional<ScanMeasurement>>& scans,

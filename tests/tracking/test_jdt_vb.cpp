@@ -1,5 +1,5 @@
 // Tests of the JDT-VB tracker (algorithms/tracking/jdt_vb.hpp) and its track heads
-// (algorithms/tracking/jdt_vb_heads.hpp) on the OTHR model: heads from noiseless multipath detections,
+// (algorithms/tracking/track_heads.hpp) on the OTHR model: heads from noiseless multipath detections,
 // the free energy's monotonicity per VB iteration, tracking quality against the truth, options.
 #include <catch2/catch.hpp>
 
@@ -9,8 +9,8 @@
 #include <memory>
 
 #include "algorithms/tracking/jdt_vb.hpp"
-#include "algorithms/tracking/jdt_vb_heads.hpp"
 #include "algorithms/tracking/meta_state_chain.hpp"
+#include "algorithms/tracking/track_heads.hpp"
 #include "harness/core/errors.hpp"
 #include "harness/core/random_stream.hpp"
 #include "harness/tracking/metrics.hpp"

@@ -65,7 +65,7 @@ TEST_CASE("md-hmht filter: gates and costs are the per-path UKF predictions and 
   node.estimate.covariance = A * A.transpose();
   node.scan = 4;
   const Eigen::MatrixXd& scan = problem.scans[5];
-  dabench::mptf::ScanIndex index;
+  dabench::ScanIndex index;
   index.build(scan);
   dabench::md_hmht::TrackPrediction p;
   filter.predict(node, scan, index, p);
@@ -114,7 +114,7 @@ TEST_CASE("md-hmht filter: an update with several paths is the UKF update on the
   node->scan = 2;
   node->llr = 1.5;
   const Eigen::MatrixXd& scan = problem.scans[3];
-  dabench::mptf::ScanIndex index;
+  dabench::ScanIndex index;
   index.build(scan);
   dabench::md_hmht::TrackPrediction p;
   filter.predict(*node, scan, index, p);

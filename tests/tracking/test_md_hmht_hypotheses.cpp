@@ -19,8 +19,8 @@
 #include <fmt/format.h>
 
 #include "algorithms/tracking/chi_square.hpp"
-#include "algorithms/tracking/jdt_vb_heads.hpp"
 #include "algorithms/tracking/md_hmht.hpp"
+#include "algorithms/tracking/track_heads.hpp"
 #include "algorithms/tracking/ukf.hpp"
 #include "harness/core/errors.hpp"
 #include "harness/core/random_stream.hpp"

@@ -58,7 +58,7 @@ TEST_CASE("mptf: PDA with one gated measurement, P_D = 1 and no clutter is the U
   Eigen::MatrixXd scan(3, 2);
   scan.col(0) << 1804.0, 0.1012, 0.503;
   scan.col(1) << 1900.0, 0.1, 0.5;
-  dabench::mptf::ScanIndex index;
+  dabench::ScanIndex index;
   index.build(scan);
   dabench::mptf::PdaScratch scratch;
   std::vector<char> gated(2, 0);
@@ -93,7 +93,7 @@ TEST_CASE("mptf: PDA weights with clutter follow beta_0 = b / (b + sum e)", "[mp
   Eigen::MatrixXd scan(3, 2);
   scan.col(0) << 1803.0, 0.001, 0.502;
   scan.col(1) << 1796.0, -0.002, 0.499;
-  dabench::mptf::ScanIndex index;
+  dabench::ScanIndex index;
   index.build(scan);
   dabench::mptf::PdaScratch scratch;
   std::vector<char> gated(2, 0);
