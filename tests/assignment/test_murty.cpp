@@ -8,27 +8,26 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <limits>
 #include <set>
 #include <span>
 #include <vector>
 
 #include "algorithms/assignment/murty.hpp"
 #include "harness/core/random_stream.hpp"
+#include "tests/support/cost_matrix.hpp"
 #include "tests/support/input_error.hpp"
 
 using namespace dabench;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using dabench::test::CostMatrix;
+using dabench::test::kInf;
 
-struct Problem {
-  int rows = 0;
-  int cols = 0;
-  std::vector<double> cost;  // rows × cols, row-major
+// A cost matrix and each row's cost of a miss (j = −1; +∞: the row must take a column).
+struct Problem : CostMatrix {
   std::vector<double> miss;  // rows
-  double at(int r, int j) const { return j < 0 ? miss[r] : cost[static_cast<std::size_t>(r) * cols + j]; }
+  double at(int r, int j) const { return j < 0 ? miss[r] : CostMatrix::at(r, j); }
 };
 
 struct Event {

@@ -17,19 +17,14 @@
 
 #include "harness/core/linear_assignment.hpp"
 #include "harness/core/random_stream.hpp"
+#include "tests/support/cost_matrix.hpp"
 
 using namespace dabench;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-struct Problem {
-  int rows = 0;
-  int cols = 0;
-  std::vector<double> cost;  // row-major
-  double at(int r, int c) const { return cost[static_cast<std::size_t>(r) * cols + c]; }
-};
+using dabench::test::kInf;
+using Problem = dabench::test::CostMatrix;
 
 // Minimum over every injection of the smaller side into the larger of the summed cost, or +∞
 // if every injection uses a forbidden entry. Plain recursion over the rows (or columns).

@@ -44,11 +44,6 @@ std::size_t item_offset(const std::string& text, long long item) { return offset
 constexpr int kPoints = 2;
 constexpr int kSpecs = 2;
 
-CsvTable table_without_time(const TempDir& dir, const std::string& relative) {
-  REQUIRE(dir.exists(relative));
-  return parse_csv(dir.read(relative)).without([](const std::string& name) { return name.rfind("time_us", 0) == 0; });
-}
-
 }  // namespace
 
 TEST_CASE("run multi-scan: trials.csv and targets.csv rows and metrics agree", "[run][multi_scan]") {
@@ -111,9 +106,9 @@ TEST_CASE("run multi-scan: 1 and 2 threads give identical files", "[run][multi_s
   dir.write("tiny.ini", kTiny);
   run_ok(dir, {"run", "tiny.ini", "--threads", "1", "--out", "one"});
   run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "two"});
-  check_same(table_without_time(dir, "one/trials.csv"), table_without_time(dir, "two/trials.csv"));
+  check_same(without_timing(dir, "one/trials.csv"), without_timing(dir, "two/trials.csv"));
   CHECK(dir.read("one/targets.csv") == dir.read("two/targets.csv"));
-  check_same(table_without_time(dir, "one/summary.csv"), table_without_time(dir, "two/summary.csv"));
+  check_same(without_timing(dir, "one/summary.csv"), without_timing(dir, "two/summary.csv"));
   run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "other", "--seed", "4"});
   CHECK(dir.read("one/targets.csv") != dir.read("other/targets.csv"));
 }
@@ -125,7 +120,7 @@ TEST_CASE("run multi-scan: --resume after a hard kill finishes identically", "[r
   const std::string trials = dir.read("A/trials.csv");
   const std::string targets = dir.read("A/targets.csv");
   const std::string meta = dir.read("A/meta.json");
-  const CsvTable reference = table_without_time(dir, "A/trials.csv");
+  const CsvTable reference = without_timing(dir, "A/trials.csv");
   const std::size_t trials_header = trials.find('\n') + 1, targets_header = targets.find('\n') + 1;
   // (what, trials.csv length, targets.csv length); targets.csv always reaches at least as far.
   const std::vector<std::tuple<std::string, std::size_t, std::size_t>> cuts = {
@@ -143,7 +138,7 @@ TEST_CASE("run multi-scan: --resume after a hard kill finishes identically", "[r
       write_text(dir.work() / "K" / "targets.csv", targets.substr(0, targets_length));
       write_text(dir.work() / "K" / "meta.json", meta);
       run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "K", "--resume"});
-      check_same(reference, table_without_time(dir, "K/trials.csv"));
+      check_same(reference, without_timing(dir, "K/trials.csv"));
       CHECK(dir.read("K/targets.csv") == targets);
     }
   }
@@ -167,7 +162,7 @@ TEST_CASE("run multi-scan: --resume after a hard kill finishes identically", "[r
   SECTION("--resume on a finished run changes nothing") {
     run_ok(dir, {"run", "tiny.ini", "--threads", "1", "--out", "A", "--resume"});
     CHECK(dir.read("A/targets.csv") == targets);
-    check_same(reference, table_without_time(dir, "A/trials.csv"));
+    check_same(reference, without_timing(dir, "A/trials.csv"));
   }
 }
 
@@ -180,7 +175,7 @@ TEST_CASE("run multi-scan: the column-dual solver's diagnostics, identical for 1
             "[scenario]\nparticles = 60\nmean_targets = 3\n");
   run_ok(dir, {"run", "convex.ini", "--threads", "1", "--out", "one"});
   run_ok(dir, {"run", "convex.ini", "--threads", "2", "--out", "two"});
-  check_same(table_without_time(dir, "one/trials.csv"), table_without_time(dir, "two/trials.csv"));
+  check_same(without_timing(dir, "one/trials.csv"), without_timing(dir, "two/trials.csv"));
   CHECK(dir.read("one/targets.csv") == dir.read("two/targets.csv"));
   const CsvTable trials = parse_csv(dir.read("one/trials.csv"));
   int solved = 0;
@@ -217,21 +212,14 @@ TEST_CASE("run multi-scan: draws without targets are skipped", "[run][multi_scan
 
 TEST_CASE("run multi-scan: configuration errors are one clear line", "[run][multi_scan]") {
   TempDir dir;
-  const auto refused = [&](const std::string& text, const std::vector<std::string>& parts) {
-    dir.write("bad.ini", text);
-    const CliResult result = run_dabench(dir, {"run", "bad.ini", "--out", "B"});
-    CHECK(result.status == 2);
-    for (const auto& part : parts) {
-      INFO("stderr: " << result.err);
-      CHECK(contains(result.err, part));
-    }
-    CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
-    CHECK_FALSE(dir.exists("B"));
-  };
-  refused("scenario = bearings\ntrials = 2\nalgorithm = no-such-method\n",
-          {"bad.ini", "unknown multi-scan algorithm 'no-such-method'", "known: ", "jpda-bp"});
-  refused("scenario = bearings\ntrials = 2\nalgorithm = bp\n", {"'bp' is a single-scan algorithm", "multi-scan"});
-  refused("scenario = grid\ntrials = 2\nalgorithm = jpda-bp\n", {"'jpda-bp' is a multi-scan algorithm"});
-  refused("scenario = bearings\ntrials = 2\nreference = jpda-bp\nalgorithm = jpda-bp\n", {"'reference' lines are not used"});
-  refused("scenario = bearings\ntrials = 2\nalgorithm = jpda-bp\n[scenario]\nparticles = 0\n", {"particles = 0"});
+  check_refused_on_command_line(dir, "scenario = bearings\ntrials = 2\nalgorithm = no-such-method\n",
+                                {"bad.ini", "unknown multi-scan algorithm 'no-such-method'", "known: ", "jpda-bp"});
+  check_refused_on_command_line(dir, "scenario = bearings\ntrials = 2\nalgorithm = bp\n",
+                                {"'bp' is a single-scan algorithm", "multi-scan"});
+  check_refused_on_command_line(dir, "scenario = grid\ntrials = 2\nalgorithm = jpda-bp\n",
+                                {"'jpda-bp' is a multi-scan algorithm"});
+  check_refused_on_command_line(dir, "scenario = bearings\ntrials = 2\nreference = jpda-bp\nalgorithm = jpda-bp\n",
+                                {"'reference' lines are not used"});
+  check_refused_on_command_line(
+      dir, "scenario = bearings\ntrials = 2\nalgorithm = jpda-bp\n[scenario]\nparticles = 0\n", {"particles = 0"});
 }

@@ -27,12 +27,6 @@ RowMatrix solve_baa(const SingleScanProblem& problem) {
   return result.marginals;
 }
 
-SingleScanProblem from_psi(const RowMatrix& psi) {
-  SingleScanProblem problem;
-  problem.psi = psi;
-  return problem;
-}
-
 }  // namespace
 
 TEST_CASE("baa: a lone target gets PDA (closed form)", "[baa]") {
@@ -66,12 +60,9 @@ TEST_CASE("baa: exact for two targets (brute force on random 2 x m problems)", "
 TEST_CASE("baa: hand-computed 2x2 is exact", "[baa]") {
   // S_1 = 4, S_2 = 8. Target 1: [S_2, 1·(S_2 − 3), 2·(S_2 − 4)] = [8, 5, 8] (/21).
   // Target 2: [S_1, 3·(S_1 − 1), 4·(S_1 − 2)] = [4, 9, 8] (/21): the exact marginals.
-  RowMatrix psi(2, 2);
-  psi << 1, 2, 3, 4;
-  RowMatrix expected(2, 3);
-  expected << 8, 5, 8, 4, 9, 8;
-  expected /= 21.0;
-  CHECK(scaled_error(solve_baa(from_psi(psi)), expected, 1e-14, 0.0) <= 1.0);
+  const RowMatrix psi = psi_2x2();
+  const RowMatrix expected = marginals_2x2();
+  CHECK(scaled_error(solve_baa(make_problem(psi)), expected, 1e-14, 0.0) <= 1.0);
 }
 
 TEST_CASE("baa: hand-computed 3x3 complete graphs (not exact)", "[baa]") {
@@ -82,7 +73,7 @@ TEST_CASE("baa: hand-computed 3x3 complete graphs (not exact)", "[baa]") {
     RowMatrix expected(3, 4);
     for (int i = 0; i < 3; ++i) expected.row(i) << miss / z, hit / z, hit / z, hit / z;
     INFO("t = " << t);
-    CHECK(scaled_error(solve_baa(from_psi(RowMatrix::Constant(3, 3, t))), expected, 1e-14, 0.0) <= 1.0);
+    CHECK(scaled_error(solve_baa(make_problem(RowMatrix::Constant(3, 3, t))), expected, 1e-14, 0.0) <= 1.0);
   }
 }
 
@@ -99,9 +90,9 @@ TEST_CASE("baa: hand-computed 3-target chain (middle target exact, ends not)", "
   psi << 1, 2, 3, 0, 0, 4;
   RowMatrix expected(3, 3);
   expected << 20.0 / 33, 5.0 / 33, 8.0 / 33, 4.0 / 13, 9.0 / 13, 0, 1.0 / 3, 0, 2.0 / 3;
-  const RowMatrix baa = solve_baa(from_psi(psi));
+  const RowMatrix baa = solve_baa(make_problem(psi));
   CHECK(scaled_error(baa, expected, 1e-14, 0.0) <= 1.0);
-  const RowMatrix exact = brute_force_marginals(from_psi(psi)).marginals;
+  const RowMatrix exact = brute_force_marginals(make_problem(psi)).marginals;
   CHECK(exact(0, 0) == Approx(20.0 / 33).epsilon(1e-14));
   CHECK(exact(1, 1) == Approx(21.0 / 33).epsilon(1e-14));
   CHECK(exact(2, 2) == Approx(20.0 / 33).epsilon(1e-14));
@@ -122,7 +113,7 @@ TEST_CASE("baa: disjoint gates give the exact marginals", "[baa]") {
   for (int trial = 0; trial < 30; ++trial) {
     const SingleScanProblem a = random_problem(rng2, 2, 3, Density::dense);
     const SingleScanProblem b = random_problem(rng2, 2, 2, Density::dense);
-    SingleScanProblem both = from_psi(RowMatrix::Zero(4, 5));
+    SingleScanProblem both = make_problem(RowMatrix::Zero(4, 5));
     both.psi.block(0, 0, 2, 3) = a.psi;
     both.psi.block(2, 3, 2, 2) = b.psi;
     CHECK(scaled_error(solve_baa(both), brute_force_marginals(both).marginals, 1e-12, 1e-300) <= 1.0);
@@ -133,7 +124,7 @@ TEST_CASE("baa: degenerate problems", "[baa]") {
   for (const auto& [n, m] : {std::pair{0, 3}, std::pair{3, 0}, std::pair{0, 0}, std::pair{3, 4}}) {
     RowMatrix expected = RowMatrix::Zero(n, m + 1);
     expected.col(0).setOnes();
-    CHECK(max_abs_difference(solve_baa(from_psi(RowMatrix::Zero(n, m))), expected) == 0.0);
+    CHECK(max_abs_difference(solve_baa(make_problem(RowMatrix::Zero(n, m))), expected) == 0.0);
   }
 }
 
@@ -141,7 +132,7 @@ TEST_CASE("baa: huge weights stay finite", "[baa]") {
   // ψ = t·ones(2,2) (exact for two targets): p_0 = (1 + 2t)/(1 + 4t + 2t²), p_j = (t + t²)/(...).
   // For t = 1e300 these are 1e-300 (to rounding) and 1/2; the weights' sums overflow a double
   // unless the rows are scaled.
-  SingleScanProblem problem = from_psi(RowMatrix::Constant(2, 2, 1e300));
+  SingleScanProblem problem = make_problem(RowMatrix::Constant(2, 2, 1e300));
   const RowMatrix p = solve_baa(problem);
   for (int i = 0; i < 2; ++i) {
     CHECK(p(i, 0) == Approx(1e-300).epsilon(1e-12));
@@ -151,7 +142,7 @@ TEST_CASE("baa: huge weights stay finite", "[baa]") {
   // A dominant weight next to tiny ones: S − ψ is formed without cancellation.
   RowMatrix psi(2, 3);
   psi << 1e15, 1e-3, 2e-3, 1, 1, 1;
-  const SingleScanProblem skewed = from_psi(psi);
+  const SingleScanProblem skewed = make_problem(psi);
   CHECK(scaled_error(solve_baa(skewed), brute_force_marginals(skewed).marginals, 1e-12, 1e-300) <= 1.0);
 }
 

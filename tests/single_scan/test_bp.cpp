@@ -25,12 +25,6 @@ namespace {
 
 constexpr double kTreeTolerance = 1e-9;
 
-SingleScanProblem make_problem(const RowMatrix& psi) {
-  SingleScanProblem problem;
-  problem.psi = psi;
-  return problem;
-}
-
 SolveResult solve_bp(const SingleScanProblem& problem, const std::string& spec) {
   auto solver = make_single_scan_solver(spec);
   SolveResult result = run_solver(*solver, problem);
@@ -243,13 +237,12 @@ TEST_CASE("bp: Theorem-3 stopping rule keeps beliefs within delta of convergence
   // |p_k - p_*| ≤ δ for every belief. p_* from the independent reference iterated to a
   // floating-point fixed point.
   RandomStream rng(7, 14, 0);
-  const Density densities[] = {Density::dense, Density::sparse, Density::extreme};
   int checked = 0;
   double worst_ratio = 0.0;  // max over problems of deviation / δ
   for (int trial = 0; trial < 200; ++trial) {
     const int n = uniform_int(rng, 2, 7);
     const int m = uniform_int(rng, 2, 7);
-    const Density density = densities[trial % 3];
+    const Density density = cycled_density(trial);
     const SingleScanProblem problem = random_problem(rng, n, m, density, trial % 5 == 4);
     const ReferenceBp reference = reference_bp(problem, 200000);
     if (!(reference.last_change < 1e-13)) continue;  // reference not at its fixed point
@@ -515,11 +508,7 @@ TEST_CASE("bp: invariant to permuting targets and measurements", "[bp]") {
     const std::vector<int> cols = random_permutation(rng, m);
     const RowMatrix base = run_solver(*solver, problem).marginals;
     const RowMatrix moved = run_solver(*solver, permute_problem(problem, rows, cols)).marginals;
-    RowMatrix moved_back(n, m + 1);
-    for (int i = 0; i < n; ++i) {
-      moved_back(i, 0) = moved(rows[i], 0);
-      for (int j = 0; j < m; ++j) moved_back(i, j + 1) = moved(rows[i], cols[j] + 1);
-    }
+    const RowMatrix moved_back = unpermute_marginals(moved, rows, cols);
     INFO("trial " << trial);
     CHECK(max_abs_difference(moved_back, base) <= 1e-9);
   }

@@ -26,12 +26,6 @@ using namespace dabench::test;
 
 namespace {
 
-SingleScanProblem make_problem(const RowMatrix& psi) {
-  SingleScanProblem problem;
-  problem.psi = psi;
-  return problem;
-}
-
 RowMatrix normalized_psi(const SingleScanProblem& problem) {
   RowMatrix psi(problem.targets(), problem.measurements());
   for (int i = 0; i < problem.targets(); ++i) {
@@ -115,9 +109,7 @@ class LiteralRecursion {
 
 TEST_CASE("cd: hand-computed 2x2 at depths 1 2 3", "[cd]") {
   // ψ = [[1, 2], [3, 4]] (the 2x2 of test_exact: exact p_1 = [8, 5, 8]/21, p_2 = [4, 9, 8]/21).
-  RowMatrix psi(2, 2);
-  psi << 1, 2, 3, 4;
-  const SingleScanProblem problem = make_problem(psi);
+  const SingleScanProblem problem = make_problem(psi_2x2());
   // Depth 1 (PDA): target 1: s = 1 + 1 + 2 = 4; target 2: s = 1 + 3 + 4 = 8.
   RowMatrix d1(2, 3);
   d1 << 1.0 / 4, 1.0 / 4, 2.0 / 4, 1.0 / 8, 3.0 / 8, 4.0 / 8;
@@ -129,9 +121,7 @@ TEST_CASE("cd: hand-computed 2x2 at depths 1 2 3", "[cd]") {
   d2 << 20.0 / 33, 5.0 / 33, 8.0 / 33, 6.0 / 23, 9.0 / 23, 8.0 / 23;
   CHECK(scaled_error(solve_cd(problem, 2), d2, 1e-15, 0.0) <= 1.0);
   // Depth 3 = longest self-avoiding walk (4 nodes, 3 edges): exact.
-  RowMatrix exact(2, 3);
-  exact << 8, 5, 8, 4, 9, 8;
-  exact /= 21.0;
+  const RowMatrix exact = marginals_2x2();
   CHECK(scaled_error(solve_cd(problem, 3), exact, 1e-14, 0.0) <= 1.0);
   CHECK(scaled_error(solve_cd(problem, 2), exact, 1e-3, 0.0) > 1.0);  // depth 2 is not
 }
@@ -142,14 +132,9 @@ TEST_CASE("cd: full depth equals exact and brute force on random problems up to 
   std::map<int, std::unique_ptr<CorrelationDecay>> by_depth;  // reused: workspace reuse too
   CorrelationDecay deep(cd_options(1000));
   CorrelationDecay deep_plain(cd_options(1000, false));
-  const Density densities[] = {Density::dense, Density::sparse, Density::extreme};
   int checked = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    const int n = uniform_int(rng, 0, 6);
-    const int m = uniform_int(rng, 0, 6);
-    const Density density = densities[trial % 3];
-    const bool side = (trial / 3) % 3 == 0;
-    SingleScanProblem problem = random_problem(rng, n, m, density, side);
+    auto [n, m, density, side, problem] = sweep_trial(rng, trial, 6);
     if (trial % 50 == 7 && n > 0 && m > 0) problem.psi.setZero();  // degenerate: nothing gated
     REQUIRE(problem.validate().empty());
     INFO("trial " << trial << " n=" << n << " m=" << m << " density " << density_name(density) << " side " << side
@@ -177,11 +162,10 @@ TEST_CASE("cd: full depth equals exact and brute force on random problems up to 
 
 TEST_CASE("cd: every depth equals the literal recursion whose rows need no normalisation", "[cd]") {
   RandomStream rng(99, 4, 0);
-  const Density densities[] = {Density::dense, Density::sparse, Density::extreme};
   for (int trial = 0; trial < 60; ++trial) {
     const int n = uniform_int(rng, 1, 5);
     const int m = uniform_int(rng, 1, 5);
-    const SingleScanProblem problem = random_problem(rng, n, m, densities[trial % 3], trial % 4 == 0);
+    const SingleScanProblem problem = random_problem(rng, n, m, cycled_density(trial), trial % 4 == 0);
     LiteralRecursion literal(problem);
     for (int depth = 1; depth <= 7; ++depth) {
       INFO("trial " << trial << " depth " << depth << "\npsi=\n" << problem.psi);
@@ -360,9 +344,7 @@ TEST_CASE("cd: clusters wider than 64 nodes (multi-word keys)", "[cd]") {
 TEST_CASE("cd: budget exceeded reports skipped and the solver goes on", "[cd]") {
   RandomStream rng(12, 10, 0);
   const SingleScanProblem big = random_problem(rng, 6, 6, Density::dense);
-  RowMatrix psi(2, 2);
-  psi << 1, 2, 3, 4;
-  const SingleScanProblem small = make_problem(psi);
+  const SingleScanProblem small = make_problem(psi_2x2());
 
   auto solver = make_single_scan_solver("cd:depth=7,budget=1000");
   const SolveResult refused = run_solver(*solver, big);

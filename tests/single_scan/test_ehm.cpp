@@ -13,6 +13,7 @@
 #include "algorithms/single_scan/ehm.hpp"
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
+#include "tests/support/shuffled_blocks.hpp"
 
 using namespace dabench;
 using namespace dabench::test;
@@ -25,12 +26,6 @@ constexpr double kAbsolute = 1e-12;
 // Every variant: EHM2 tree / plain EHM path × the four target orders.
 const char* const kVariants[] = {"ehm",          "ehm:tree=0",         "ehm:order=1",         "ehm:order=1,tree=0",
                                  "ehm:order=2",  "ehm:order=2,tree=0", "ehm:order=3",         "ehm:order=3,tree=0"};
-
-SingleScanProblem make_problem(const RowMatrix& psi) {
-  SingleScanProblem problem;
-  problem.psi = psi;
-  return problem;
-}
 
 RowMatrix solve_with(const std::string& spec, const SingleScanProblem& problem) {
   auto solver = make_single_scan_solver(spec);
@@ -93,11 +88,8 @@ SingleScanProblem grid_problem(int rows, int cols, double spacing, std::uint32_t
 
 TEST_CASE("ehm: hand-computed 2x2 and 3x3 complete graphs", "[ehm]") {
   // See test_exact.cpp: ψ = [[1, 2], [3, 4]] gives Z = 21 and the rows below.
-  RowMatrix psi(2, 2);
-  psi << 1, 2, 3, 4;
-  RowMatrix expected(2, 3);
-  expected << 8, 5, 8, 4, 9, 8;
-  expected /= 21.0;
+  const RowMatrix psi = psi_2x2();
+  const RowMatrix expected = marginals_2x2();
   // ψ = 2·ones(3,3): Z = 1 + 9t + 18t² + 6t³ = 139, p = [37, 34, 34, 34]/139 per target.
   RowMatrix expected3(3, 4);
   for (int i = 0; i < 3; ++i) expected3.row(i) << 37.0 / 139, 34.0 / 139, 34.0 / 139, 34.0 / 139;
@@ -118,14 +110,9 @@ TEST_CASE("ehm: matches brute force and exact on random problems up to 8x8", "[e
   std::vector<std::unique_ptr<SingleScanSolver>> solvers;  // one per variant, reused: workspace reuse too
   for (const char* spec : kVariants) solvers.push_back(make_single_scan_solver(spec));
   auto exact = make_single_scan_solver("exact");
-  const Density densities[] = {Density::dense, Density::sparse, Density::extreme};
   int brute_checked = 0, exact_checked = 0;
   for (int trial = 0; trial < 320; ++trial) {
-    const int n = uniform_int(rng, 0, 8);
-    const int m = uniform_int(rng, 0, 8);
-    const Density density = densities[trial % 3];
-    const bool side = (trial / 3) % 3 == 0;
-    const SingleScanProblem problem = random_problem(rng, n, m, density, side);
+    const auto [n, m, density, side, problem] = sweep_trial(rng, trial, 8);
     REQUIRE(problem.validate().empty());
     const SolveResult reference = run_solver(*exact, problem);
     REQUIRE(reference.report.skipped.empty());
@@ -252,11 +239,7 @@ TEST_CASE("ehm: invariant to permuting targets and measurements", "[ehm]") {
       const std::vector<int> cols = random_permutation(rng, m);
       const RowMatrix base = run_solver(*solver, problem).marginals;
       const RowMatrix moved = run_solver(*solver, permute_problem(problem, rows, cols)).marginals;
-      RowMatrix moved_back(n, m + 1);
-      for (int i = 0; i < n; ++i) {
-        moved_back(i, 0) = moved(rows[i], 0);
-        for (int j = 0; j < m; ++j) moved_back(i, j + 1) = moved(rows[i], cols[j] + 1);
-      }
+      const RowMatrix moved_back = unpermute_marginals(moved, rows, cols);
       INFO(spec << " trial " << trial);
       CHECK(scaled_error(moved_back, base, 1e-12, 1e-14) <= 1.0);
     }
@@ -265,40 +248,16 @@ TEST_CASE("ehm: invariant to permuting targets and measurements", "[ehm]") {
 
 TEST_CASE("ehm: 40 shuffled independent 4x4 blocks match per-block brute force", "[ehm]") {
   RandomStream rng(11, 11, 0);
-  const int blocks = 40, size = 4, n = blocks * size;
-  std::vector<SingleScanProblem> parts;
-  SingleScanProblem problem = make_problem(RowMatrix::Zero(n, n));
-  for (int b = 0; b < blocks; ++b) {
-    parts.push_back(random_problem(rng, size, size, b % 3 == 0 ? Density::dense : Density::extreme));
-    problem.psi.block(b * size, b * size, size, size) = parts.back().psi;
-  }
-  const std::vector<int> rows = random_permutation(rng, n);
-  const std::vector<int> cols = random_permutation(rng, n);
-  const SingleScanProblem shuffled = permute_problem(problem, rows, cols);
+  const ShuffledBlocks problem =
+      shuffled_blocks(rng, 40, 4, [](int b) { return b % 3 == 0 ? Density::dense : Density::extreme; });
   for (const char* spec : {"ehm", "ehm:tree=0"}) {
+    INFO(spec);
     auto solver = make_single_scan_solver(spec);
-    const SolveResult result = run_solver(*solver, shuffled);
+    const SolveResult result = run_solver(*solver, problem.shuffled);
     REQUIRE(result.report.skipped.empty());
-    const RowMatrix& m = result.marginals;
-    double log_z = 0.0;
-    for (int b = 0; b < blocks; ++b) {
-      const BruteForceResult reference = brute_force_marginals(parts[b]);
-      log_z += std::log(reference.partition);
-      for (int r = 0; r < size; ++r) {
-        const int i = rows[b * size + r];
-        INFO(spec << " block " << b << " row " << r);
-        CHECK(m(i, 0) == Approx(reference.marginals(r, 0)).epsilon(kRelative).margin(kAbsolute));
-        for (int c = 0; c < n; ++c) {
-          const bool in_block = c >= b * size && c < (b + 1) * size;
-          if (in_block) {
-            CHECK(m(i, cols[c] + 1) ==
-                  Approx(reference.marginals(r, c - b * size + 1)).epsilon(kRelative).margin(kAbsolute));
-          } else {
-            CHECK(m(i, cols[c] + 1) == 0.0);
-          }
-        }
-      }
-    }
+    const double log_z = check_block_marginals(result.marginals, problem, [](double expected) {
+      return Approx(expected).epsilon(kRelative).margin(kAbsolute);
+    });
     CHECK(dynamic_cast<Ehm&>(*solver).stats().log_partition == Approx(log_z).epsilon(1e-12));
   }
 }

@@ -20,12 +20,6 @@ namespace {
 constexpr double kRelative = 1e-12;  // exact vs brute force: both sum positive terms only
 constexpr double kAbsolute = 1e-15;
 
-SingleScanProblem make_problem(const RowMatrix& psi) {
-  SingleScanProblem problem;
-  problem.psi = psi;
-  return problem;
-}
-
 RowMatrix solve_exact(const SingleScanProblem& problem, const std::string& spec = "exact") {
   auto solver = make_single_scan_solver(spec);
   const SolveResult result = run_solver(*solver, problem);
@@ -52,11 +46,8 @@ TEST_CASE("exact: hand-computed 2x2", "[exact]") {
   // Z = 1 + a + b + c + d + ad + bc = 21.
   // p(a_1 = 0) = (1 + c + d)/Z = 8/21,  p(a_1 = 1) = (a + ad)/Z = 5/21,  p(a_1 = 2) = (b + bc)/Z = 8/21
   // p(a_2 = 0) = (1 + a + b)/Z = 4/21,  p(a_2 = 1) = (c + bc)/Z = 9/21,  p(a_2 = 2) = (d + ad)/Z = 8/21
-  RowMatrix psi(2, 2);
-  psi << 1, 2, 3, 4;
-  RowMatrix expected(2, 3);
-  expected << 8, 5, 8, 4, 9, 8;
-  expected /= 21.0;
+  const RowMatrix psi = psi_2x2();
+  const RowMatrix expected = marginals_2x2();
 
   const SingleScanProblem problem = make_problem(psi);
   const BruteForceResult oracle = brute_force_marginals(problem);
@@ -137,14 +128,9 @@ TEST_CASE("exact: hand-computed 3x3 with two clusters", "[exact]") {
 TEST_CASE("exact: matches brute force on random problems up to 6x6", "[exact]") {
   RandomStream rng(20240601, 1, 0);
   auto solver = make_single_scan_solver("exact");
-  const Density densities[] = {Density::dense, Density::sparse, Density::extreme};
   int checked = 0;
   for (int trial = 0; trial < 360; ++trial) {
-    const int n = uniform_int(rng, 0, 6);
-    const int m = uniform_int(rng, 0, 6);
-    const Density density = densities[trial % 3];
-    const bool side = (trial / 3) % 3 == 0;
-    const SingleScanProblem problem = random_problem(rng, n, m, density, side);
+    const auto [n, m, density, side, problem] = sweep_trial(rng, trial, 6);
     REQUIRE(problem.validate().empty());
     const SolveResult result = run_solver(*solver, problem);  // one solver: workspace reuse too
     INFO("trial " << trial << " density " << density_name(density) << " side weights " << side);
@@ -237,11 +223,7 @@ TEST_CASE("exact: invariant to permuting targets and measurements", "[exact]") {
 
     const RowMatrix base = run_solver(*solver, problem).marginals;
     const RowMatrix moved = run_solver(*solver, permuted).marginals;
-    RowMatrix moved_back(n, m + 1);
-    for (int i = 0; i < n; ++i) {
-      moved_back(i, 0) = moved(rows[i], 0);
-      for (int j = 0; j < m; ++j) moved_back(i, j + 1) = moved(rows[i], cols[j] + 1);
-    }
+    const RowMatrix moved_back = unpermute_marginals(moved, rows, cols);
     INFO("trial " << trial);
     CHECK(scaled_error(moved_back, base, kRelative, kAbsolute) <= 1.0);
   }

@@ -19,6 +19,7 @@
 #include "bench/single_scan/problem_pool.hpp"
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
+#include "tests/support/shuffled_blocks.hpp"
 
 using namespace dabench;
 using namespace dabench::test;
@@ -26,12 +27,6 @@ using namespace dabench::test;
 namespace {
 
 constexpr double kTolerance = 1e-10;
-
-SingleScanProblem make_problem(const RowMatrix& psi) {
-  SingleScanProblem problem;
-  problem.psi = psi;
-  return problem;
-}
 
 JunctionTree make_jt(const std::string& settings = "") {
   return JunctionTree(make_options<JtOptions>(parse_spec("jt" + (settings.empty() ? "" : ":" + settings)).settings, "jt"));
@@ -195,11 +190,8 @@ std::uint64_t libdai_min_fill_total(int vars, const std::vector<std::pair<int, i
 
 TEST_CASE("jt: hand-computed 2x2 and its partition function", "[jt]") {
   // Same case as the exact test: Z = 21, p_1 = [8, 5, 8]/21, p_2 = [4, 9, 8]/21.
-  RowMatrix psi(2, 2);
-  psi << 1, 2, 3, 4;
-  RowMatrix expected(2, 3);
-  expected << 8, 5, 8, 4, 9, 8;
-  expected /= 21.0;
+  const RowMatrix psi = psi_2x2();
+  const RowMatrix expected = marginals_2x2();
   JunctionTree jt = make_jt();
   CHECK(scaled_error(solve_ok(jt, make_problem(psi)), expected, 1e-14, 0.0) <= 1.0);
   CHECK(jt.log_partition() == Approx(std::log(21.0)).epsilon(1e-14));
@@ -210,14 +202,9 @@ TEST_CASE("jt: equals brute force and exact at threshold 0 on random problems", 
   RandomStream rng(20240715, 1, 0);
   JunctionTree jt = make_jt();  // one solver for all: workspace reuse is exercised too
   auto exact = make_single_scan_solver("exact");
-  const Density densities[] = {Density::dense, Density::sparse, Density::extreme};
   int checked = 0;
   for (int trial = 0; trial < 240; ++trial) {
-    const int n = uniform_int(rng, 0, 6);
-    const int m = uniform_int(rng, 0, 6);
-    const Density density = densities[trial % 3];
-    const bool side = (trial / 3) % 3 == 0;
-    const SingleScanProblem problem = random_problem(rng, n, m, density, side);
+    const auto [n, m, density, side, problem] = sweep_trial(rng, trial, 6);
     REQUIRE(problem.validate().empty());
     const RowMatrix marginals = solve_ok(jt, problem);
     const BruteForceResult oracle = brute_force_marginals(problem);
@@ -236,7 +223,7 @@ TEST_CASE("jt: equals brute force and exact at threshold 0 on random problems", 
   }
   // 7×7 (8^7 brute-force tuples each): a few against brute force, more against exact.
   for (int trial = 0; trial < 40; ++trial) {
-    const Density density = densities[trial % 3];
+    const Density density = cycled_density(trial);
     const SingleScanProblem problem = random_problem(rng, 7, 7, density, trial % 4 == 0);
     const RowMatrix marginals = solve_ok(jt, problem);
     INFO("7x7 trial " << trial << " " << density_name(density));
@@ -517,37 +504,13 @@ TEST_CASE("jt: block-diagonal problems are solved cluster by cluster", "[jt]") {
   // 30×30 with five dense 6×6 blocks, shuffled: each block's marginals are its own, log Z is
   // the sum over blocks, and the tables never exceed one block's (7^6 entries per clique).
   RandomStream rng(11, 5, 0);
-  const int blocks = 5, size = 6, n = blocks * size;
-  std::vector<SingleScanProblem> parts;
-  SingleScanProblem problem = make_problem(RowMatrix::Zero(n, n));
-  for (int b = 0; b < blocks; ++b) {
-    parts.push_back(random_problem(rng, size, size, b % 2 == 0 ? Density::dense : Density::extreme));
-    problem.psi.block(b * size, b * size, size, size) = parts.back().psi;
-  }
-  const std::vector<int> rows = random_permutation(rng, n);
-  const std::vector<int> cols = random_permutation(rng, n);
-  const SingleScanProblem shuffled = permute_problem(problem, rows, cols);
+  const ShuffledBlocks problem =
+      shuffled_blocks(rng, 5, 6, [](int b) { return b % 2 == 0 ? Density::dense : Density::extreme; });
   JunctionTree jt = make_jt("memory_mb=2");  // 7^6 doubles = 0.9 MiB per block; all 5 would be 4.5
-  const RowMatrix m = solve_ok(jt, shuffled);
+  const RowMatrix m = solve_ok(jt, problem.shuffled);
   CHECK(jt.largest_table_entries() <= 117649);
-  double log_z = 0.0;
-  for (int b = 0; b < blocks; ++b) {
-    const BruteForceResult reference = brute_force_marginals(parts[b]);
-    log_z += std::log(reference.partition);
-    for (int r = 0; r < size; ++r) {
-      const int i = rows[b * size + r];
-      INFO("block " << b << " row " << r);
-      CHECK(m(i, 0) == Approx(reference.marginals(r, 0)).margin(kTolerance));
-      for (int c = 0; c < n; ++c) {
-        const bool in_block = c >= b * size && c < (b + 1) * size;
-        if (in_block) {
-          CHECK(m(i, cols[c] + 1) == Approx(reference.marginals(r, c - b * size + 1)).margin(kTolerance));
-        } else {
-          CHECK(m(i, cols[c] + 1) == 0.0);
-        }
-      }
-    }
-  }
+  const double log_z =
+      check_block_marginals(m, problem, [](double expected) { return Approx(expected).margin(kTolerance); });
   CHECK(jt.log_partition() == Approx(log_z).epsilon(1e-12));
 }
 

@@ -147,22 +147,14 @@ void check_value(double found, double best) {
   CHECK(std::fabs(found - best) <= 1e-9 * std::max(1.0, std::fabs(best)));
 }
 
-SingleScanProblem from_psi(const RowMatrix& psi) {
-  SingleScanProblem problem;
-  problem.psi = psi;
-  return problem;
-}
-
 }  // namespace
 
 TEST_CASE("map: hand-computed 2x2", "[map]") {
   // ψ = [[1, 2], [3, 4]]: event weights (0,0) 1, (1,0) 1, (2,0) 2, (0,1) 3, (0,2) 4, (1,2) 4,
   // (2,1) 6 → MAP is target 1 → measurement 2, target 2 → measurement 1.
-  RowMatrix psi(2, 2);
-  psi << 1, 2, 3, 4;
   RowMatrix expected(2, 3);
   expected << 0, 0, 1, 0, 1, 0;
-  CHECK(solve_map(from_psi(psi)) == expected);
+  CHECK(solve_map(make_problem(psi_2x2())) == expected);
 }
 
 TEST_CASE("map: weights below one leave every target missed", "[map]") {
@@ -170,19 +162,19 @@ TEST_CASE("map: weights below one leave every target missed", "[map]") {
   psi << 0.9, 0.5, 0, 0.99, 0.2, 0.999, 0.3, 0, 0, 0, 0.01, 0.5;
   RowMatrix expected = RowMatrix::Zero(3, 5);
   expected.col(0).setOnes();
-  CHECK(solve_map(from_psi(psi)) == expected);
+  CHECK(solve_map(make_problem(psi)) == expected);
 }
 
 TEST_CASE("map: side weights change the maximiser", "[map]") {
   // ψ = [[3]] alone: associate (3 > 1). With w_10 = 2 and w_01 = 2: associate weighs 3,
   // miss weighs w_10 · w_01 = 4, so the MAP event is the miss.
-  SingleScanProblem problem = from_psi(RowMatrix::Constant(1, 1, 3.0));
+  SingleScanProblem problem = make_problem(RowMatrix::Constant(1, 1, 3.0));
   CHECK(solve_map(problem)(0, 1) == 1.0);
   problem.miss_weight = Vector::Constant(1, 2.0);
   problem.clutter_weight = Vector::Constant(1, 2.0);
   CHECK(solve_map(problem)(0, 0) == 1.0);
   // Two targets competing for one measurement: the larger normalised weight wins.
-  SingleScanProblem two = from_psi((RowMatrix(2, 1) << 6.0, 4.0).finished());
+  SingleScanProblem two = make_problem((RowMatrix(2, 1) << 6.0, 4.0).finished());
   two.miss_weight = (Vector(2) << 3.0, 1.0).finished();  // normalised ψ: 2 and 4
   CHECK(solve_map(two) == (RowMatrix(2, 2) << 1, 0, 0, 1).finished());
 }
@@ -207,22 +199,22 @@ TEST_CASE("map: equals brute-force MAP value on random problems", "[map]") {
 
 TEST_CASE("map: degenerate problems and ties", "[map]") {
   SECTION("no targets or no measurements") {
-    CHECK(solve_map(from_psi(RowMatrix::Zero(0, 4))).rows() == 0);
-    const RowMatrix none = solve_map(from_psi(RowMatrix::Zero(3, 0)));
+    CHECK(solve_map(make_problem(RowMatrix::Zero(0, 4))).rows() == 0);
+    const RowMatrix none = solve_map(make_problem(RowMatrix::Zero(3, 0)));
     CHECK(none == RowMatrix::Ones(3, 1));
   }
   SECTION("all weights zero") {
     RowMatrix expected = RowMatrix::Zero(4, 4);
     expected.col(0).setOnes();
-    CHECK(solve_map(from_psi(RowMatrix::Zero(4, 3))) == expected);
+    CHECK(solve_map(make_problem(RowMatrix::Zero(4, 3))) == expected);
   }
   SECTION("all weights one: every event of any size ties") {
-    const SingleScanProblem problem = from_psi(RowMatrix::Ones(5, 5));
+    const SingleScanProblem problem = make_problem(RowMatrix::Ones(5, 5));
     const std::vector<int> a = event_of(problem, solve_map(problem));
     check_value(log_event_weight(problem, a), 0.0);
   }
   SECTION("equal weights above one: a full matching") {
-    const SingleScanProblem problem = from_psi(RowMatrix::Constant(6, 4, 2.0));
+    const SingleScanProblem problem = make_problem(RowMatrix::Constant(6, 4, 2.0));
     const std::vector<int> a = event_of(problem, solve_map(problem));
     check_value(log_event_weight(problem, a), 4.0 * std::log(2.0));
   }
@@ -237,7 +229,7 @@ TEST_CASE("map: degenerate problems and ties", "[map]") {
   SECTION("tiny and huge weights side by side") {
     RowMatrix psi(3, 3);
     psi << 1e-300, 1e300, 0, 1e300, 1e-300, 5, 0, 7, 1e-200;
-    const SingleScanProblem problem = from_psi(psi);
+    const SingleScanProblem problem = make_problem(psi);
     const std::vector<int> a = event_of(problem, solve_map(problem));
     check_value(log_event_weight(problem, a), brute_force_map_log_value(problem));
   }

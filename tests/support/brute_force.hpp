@@ -129,6 +129,55 @@ inline SingleScanProblem random_problem(RandomStream& rng, int n, int m, Density
   return problem;
 }
 
+// The density of trial `trial` of the solvers' random sweeps: dense, sparse, extreme in turn.
+inline Density cycled_density(int trial) {
+  constexpr Density densities[] = {Density::dense, Density::sparse, Density::extreme};
+  return densities[trial % 3];
+}
+
+// Trial `trial` of the solvers' sweeps against the oracles: n, then m, uniform in 0..largest
+// (drawn from `rng` before the problem), cycled_density(trial), and side weights in the first
+// of every three triples of trials.
+struct SweepTrial {
+  int n = 0;
+  int m = 0;
+  Density density = Density::dense;
+  bool side = false;
+  SingleScanProblem problem;
+};
+
+inline SweepTrial sweep_trial(RandomStream& rng, int trial, int largest) {
+  SweepTrial t;
+  t.n = uniform_int(rng, 0, largest);
+  t.m = uniform_int(rng, 0, largest);
+  t.density = cycled_density(trial);
+  t.side = (trial / 3) % 3 == 0;
+  t.problem = random_problem(rng, t.n, t.m, t.density, t.side);
+  return t;
+}
+
+// A problem given by ψ alone (every miss and clutter weight 1).
+inline SingleScanProblem make_problem(const RowMatrix& psi) {
+  SingleScanProblem problem;
+  problem.psi = psi;
+  return problem;
+}
+
+// The 2 × 2 case computed by hand in test_exact.cpp: ψ = [[1, 2], [3, 4]], Z = 21.
+inline RowMatrix psi_2x2() {
+  RowMatrix psi(2, 2);
+  psi << 1, 2, 3, 4;
+  return psi;
+}
+
+// psi_2x2()'s exact marginals (column 0: missed): p_1 = [8, 5, 8]/21, p_2 = [4, 9, 8]/21.
+inline RowMatrix marginals_2x2() {
+  RowMatrix marginals(2, 3);
+  marginals << 8, 5, 8, 4, 9, 8;
+  marginals /= 21.0;
+  return marginals;
+}
+
 // A random permutation of 0..size-1 (Fisher-Yates on the given stream).
 inline std::vector<int> random_permutation(RandomStream& rng, int size) {
   std::vector<int> perm(size);
@@ -147,6 +196,19 @@ inline SingleScanProblem permute_problem(const SingleScanProblem& problem, const
   }
   for (int i = 0; i < problem.miss_weight.size(); ++i) out.miss_weight[row_perm[i]] = problem.miss_weight[i];
   for (int j = 0; j < problem.clutter_weight.size(); ++j) out.clutter_weight[col_perm[j]] = problem.clutter_weight[j];
+  return out;
+}
+
+// Marginals of permute_problem(problem, row_perm, col_perm) put back in `problem`'s order: row i,
+// column j + 1 of the result is row row_perm[i], column col_perm[j] + 1 of `permuted`.
+inline RowMatrix unpermute_marginals(const RowMatrix& permuted, const std::vector<int>& row_perm,
+                                     const std::vector<int>& col_perm) {
+  const int n = static_cast<int>(row_perm.size()), m = static_cast<int>(col_perm.size());
+  RowMatrix out(n, m + 1);
+  for (int i = 0; i < n; ++i) {
+    out(i, 0) = permuted(row_perm[i], 0);
+    for (int j = 0; j < m; ++j) out(i, j + 1) = permuted(row_perm[i], col_perm[j] + 1);
+  }
   return out;
 }
 

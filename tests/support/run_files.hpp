@@ -1,10 +1,13 @@
 #pragma once
 // Helpers of the run tests (test_run_multi_scan, test_run_tracking, test_run_tracking_iterations):
-// run an experiment through the C++ API, check that a bad one is refused in one line, compare CSV
-// tables, find the byte where a work item's rows start (for resume tests that cut files there).
+// run an experiment through the C++ API, check that a bad one is refused in one line (through the
+// API or the command line), compare CSV tables without their timing columns, find the byte where
+// a work item's rows start, write the files a hard kill leaves and check those of a resumed run.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/core/errors.hpp"
@@ -42,6 +45,32 @@ inline void check_refused_experiment(TempDir& dir, const std::string& text, cons
   CHECK_FALSE(dir.exists("B"));
 }
 
+// Writes `text` as dir/bad.ini and checks that `dabench run bad.ini --out B` exits with status 2
+// and one stderr line naming every part, and writes no output folder B.
+inline void check_refused_on_command_line(TempDir& dir, const std::string& text, const std::vector<std::string>& parts) {
+  dir.write("bad.ini", text);
+  const CliResult result = run_dabench(dir, {"run", "bad.ini", "--out", "B"});
+  CHECK(result.status == 2);
+  for (const auto& part : parts) {
+    INFO("stderr: " << result.err);
+    CHECK(contains(result.err, part));
+  }
+  CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
+  CHECK_FALSE(dir.exists("B"));
+}
+
+// The columns that differ between two runs of one experiment: the timings (time_us of the
+// single- and multi-scan runs, tet_s of the tracking runs).
+inline bool is_timing_column(const std::string& name) {
+  return name.rfind("time_us", 0) == 0 || name.rfind("tet_s", 0) == 0;
+}
+
+// The CSV file `relative` (to dir.work()), which must exist, without its timing columns.
+inline CsvTable without_timing(const TempDir& dir, const std::string& relative) {
+  REQUIRE(dir.exists(relative));
+  return parse_csv(dir.read(relative)).without(is_timing_column);
+}
+
 // Same header and rows; the count of differing rows is reported, not every cell.
 inline void check_same(const CsvTable& a, const CsvTable& b) {
   REQUIRE(a.header == b.header);
@@ -66,6 +95,24 @@ inline std::size_t offset_of_item(const std::string& text, long long item, int t
     offset += lines[r + 1].size() + 1;
   }
   return offset;
+}
+
+// A run file's name (in its output folder) and its text.
+using RunFile = std::pair<std::string, std::string>;
+
+// Writes `files` into dir/folder, as a hard kill of a run into that folder could leave them.
+inline void write_run_files(const TempDir& dir, const std::string& folder, const std::vector<RunFile>& files) {
+  for (const auto& [name, text] : files) write_text(dir.work() / folder / name, text);
+}
+
+// The tracking run in dir/folder finished with the files of an uninterrupted one: trials.csv and
+// summary.csv are `trials` and `summary` but for their timing columns, and every item file is
+// its text in `item_files` to the byte.
+inline void check_finished_tracking_run(const TempDir& dir, const std::string& folder, const CsvTable& trials,
+                                        const CsvTable& summary, const std::vector<RunFile>& item_files) {
+  check_same(trials, without_timing(dir, folder + "/trials.csv"));
+  for (const auto& [name, text] : item_files) CHECK(dir.read(folder + "/" + name) == text);
+  check_same(summary, without_timing(dir, folder + "/summary.csv"));
 }
 
 }  // namespace dabench::test::cli

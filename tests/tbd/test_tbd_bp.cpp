@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -26,75 +25,21 @@
 #include "harness/core/solve_report.hpp"
 #include "harness/tbd/problem.hpp"
 #include "harness/tbd/registry.hpp"
-#include "tests/support/input_error.hpp"
 #include "tests/support/tbd_frames.hpp"
+#include "tests/support/tbd_runs.hpp"
 
 namespace {
 
-using dabench::RandomStream;
-using dabench::SolveReport;
-using dabench::TbdBp;
-using dabench::TbdBpOptions;
-using dabench::TbdEstimate;
-using dabench::TbdPrior;
-using dabench::TbdProblem;
-using dabench::TbdSensor;
-using dabench::TbdSignal;
-
-using dabench::test::draw_frame;
-using dabench::test::grid_problem;
+using namespace dabench;
+using namespace dabench::test;
 
 constexpr std::uint64_t kSeed = 20230711;
 
-// One object from a cell centre of a 12 × 12 grid with a known prior (r = 1, small covariance),
-// moving by the problem's NCV model; `truth` holds its state per step.
-struct OneObject {
-  TbdProblem problem;
-  std::vector<Eigen::Vector4d> truth;
-};
-
-OneObject one_object(TbdSignal signal, std::uint32_t trial, int steps) {
-  OneObject o;
-  o.problem = grid_problem(12, signal, kSeed, trial);
-  TbdProblem& p = o.problem;
+// known_object on a 12 × 12 grid, frames from tests/support/tbd_frames.hpp on stream 7.
+KnownObject one_object(TbdSignal signal, std::uint32_t trial, int steps) {
   RandomStream rng(kSeed, 7, trial);
-  Eigen::Vector4d x(5.5, 6.5, 0.1, -0.05);  // cell (5, 6)'s centre
-  TbdPrior prior;
-  prior.mean = x;
-  prior.covariance = Eigen::Vector4d(0.01, 0.01, 1e-4, 1e-4).asDiagonal();
-  prior.existence = 1.0;
-  p.initial_objects.push_back(prior);
-  const double t = p.motion.scan_interval;
-  const double sd = std::sqrt(p.motion.driving_noise_variance);
-  for (int k = 0; k < steps; ++k) {
-    if (k > 0) {
-      const double ax = sd * rng.normal(), ay = sd * rng.normal();
-      x = Eigen::Vector4d(x(0) + t * x(2) + 0.5 * t * t * ax, x(1) + t * x(3) + 0.5 * t * t * ay, x(2) + t * ax,
-                          x(3) + t * ay);
-    }
-    o.truth.push_back(x);
-    p.frames.push_back(draw_frame(p.sensor, p.amplitude, {x.head<2>()}, rng));
-  }
-  return o;
+  return known_object(grid_problem(12, signal, kSeed, trial), steps, rng, problem_frame);
 }
-
-// Runs `tracker` over every frame; estimates per step.
-std::vector<std::vector<TbdEstimate>> run_all(dabench::TbdTracker& tracker, const TbdProblem& problem,
-                                              std::vector<SolveReport>* reports = nullptr) {
-  std::vector<std::vector<TbdEstimate>> out;
-  tracker.start(problem);
-  for (int k = 0; k < problem.steps(); ++k) {
-    std::vector<TbdEstimate> estimates;
-    SolveReport report;
-    tracker.step(k, estimates, report);
-    REQUIRE(report.skipped.empty());
-    if (reports != nullptr) reports->push_back(report);
-    out.push_back(estimates);
-  }
-  return out;
-}
-
-const char* signal_name(TbdSignal s) { return s == TbdSignal::fluctuating ? "D1 fluctuating" : "D2 deterministic"; }
 
 }  // namespace
 
@@ -117,7 +62,7 @@ TEST_CASE("tbd-bp: pure noise with a tiny birth mean gives no estimates", "[tbd]
       options.particles = 500;
       TbdBp tracker(options);
       std::vector<SolveReport> reports;
-      const auto estimates = run_all(tracker, p, &reports);
+      const auto estimates = estimates_per_step(tracker, p, &reports);
       std::size_t total = 0;
       for (const auto& e : estimates) total += e.size();
       CHECK(total == 0);
@@ -143,22 +88,12 @@ TEST_CASE("tbd-bp: one known object at gamma 60 is reported at every step, near 
     double squared_errors = 0.0, traces = 0.0;
     for (std::uint32_t trial = 0; trial < 10; ++trial) {
       INFO("trial " << trial);
-      const OneObject o = one_object(signal, trial, 10);
+      const KnownObject o = one_object(signal, trial, 10);
       TbdBpOptions options;
       options.particles = 2000;
       TbdBp tracker(options);
-      tracker.start(o.problem);
       double run_squared = 0.0;
-      for (int k = 0; k < o.problem.steps(); ++k) {
-        INFO("step " << k);
-        std::vector<TbdEstimate> estimates;
-        SolveReport report;
-        tracker.step(k, estimates, report);
-        REQUIRE(report.skipped.empty());
-        REQUIRE(estimates.size() == 1);
-        const TbdEstimate& e = estimates[0];
-        CHECK(e.label == 0);  // the prior's PO throughout
-        CHECK(e.existence > 0.9);
+      follow_known_object(tracker, o.problem, [&](int k, const TbdEstimate& e) {
         const double error = (e.state.head<2>() - o.truth[k].head<2>()).norm();
         CHECK(error < step_bound);
         run_squared += error * error;
@@ -179,7 +114,7 @@ TEST_CASE("tbd-bp: one known object at gamma 60 is reported at every step, near 
         CHECK(my == Approx(e.state(1)).margin(1e-12));
         squared_errors += error * error;
         traces += vx + vy;
-      }
+      });
       CHECK(std::sqrt(run_squared / o.problem.steps()) < 0.5);
     }
     const double ratio = squared_errors / traces;
@@ -248,20 +183,13 @@ TEST_CASE("tbd-bp: an object born from the grid is reported once while present a
 
 TEST_CASE("tbd-bp: same seed gives bit-identical output and another seed option other particles with close estimates",
           "[tbd][tbd_bp][determinism]") {
-  const OneObject o = one_object(TbdSignal::deterministic, 0, 8);
+  const KnownObject o = one_object(TbdSignal::deterministic, 0, 8);
   TbdBpOptions options;
   options.particles = 2000;
   TbdBp first(options), second(options);
-  const auto a = run_all(first, o.problem);
-  const auto b = run_all(second, o.problem);
-  for (int k = 0; k < o.problem.steps(); ++k) {
-    REQUIRE(a[k].size() == b[k].size());
-    for (std::size_t n = 0; n < a[k].size(); ++n) {
-      CHECK(a[k][n].label == b[k][n].label);
-      CHECK(a[k][n].existence == b[k][n].existence);
-      for (int d = 0; d < 4; ++d) CHECK(a[k][n].state(d) == b[k][n].state(d));
-    }
-  }
+  const auto a = estimates_per_step(first, o.problem);
+  const auto b = estimates_per_step(second, o.problem);
+  check_identical_estimates(a, b);
   REQUIRE(first.objects().size() == second.objects().size());
   for (std::size_t n = 0; n < first.objects().size(); ++n) {
     CHECK(first.objects()[n].x == second.objects()[n].x);
@@ -276,7 +204,7 @@ TEST_CASE("tbd-bp: same seed gives bit-identical output and another seed option 
   TbdBpOptions other_options = options;
   other_options.seed = 1;
   TbdBp other(other_options);
-  const auto c = run_all(other, o.problem);
+  const auto c = estimates_per_step(other, o.problem);
   REQUIRE(!first.objects().empty());
   REQUIRE(first.objects().size() == other.objects().size());
   // Continuous draws from independent streams: no particle position is shared.
@@ -300,12 +228,12 @@ TEST_CASE("tbd-bp: with one PO and no births, exact kappa and kappa-tilde coinci
   // Each cell is reached by one PO only, so eq (5) has no sum over other POs and κ̃ = κ.
   for (const TbdSignal signal : {TbdSignal::fluctuating, TbdSignal::deterministic}) {
     INFO(signal_name(signal));
-    OneObject o = one_object(signal, 3, 6);
+    KnownObject o = one_object(signal, 3, 6);
     o.problem.filter.birth_mean = 0.0;
     const auto gaussian = dabench::make_tbd_tracker("tbd-bp:particles=1000");
     const auto exact = dabench::make_tbd_tracker("tbd-bp:particles=1000,exact_kappa=true");
-    const auto a = run_all(*gaussian, o.problem);
-    const auto b = run_all(*exact, o.problem);
+    const auto a = estimates_per_step(*gaussian, o.problem);
+    const auto b = estimates_per_step(*exact, o.problem);
     for (int k = 0; k < o.problem.steps(); ++k) {
       INFO("step " << k);
       REQUIRE(a[k].size() == 1);
@@ -319,25 +247,16 @@ TEST_CASE("tbd-bp: with one PO and no births, exact kappa and kappa-tilde coinci
 
 TEST_CASE("tbd-bp: invalid options are input errors naming the field", "[tbd][tbd_bp][options]") {
   using dabench::make_tbd_tracker;
-  using dabench::test::input_error_message;
-  struct Bad {
-    const char* spec;
-    const char* field;
-  };
-  for (const Bad& bad : {Bad{"tbd-bp:iterations=0", "iterations"}, Bad{"tbd-bp:iterations=21", "iterations"},
-                         Bad{"tbd-bp:particles=5", "particles"}, Bad{"tbd-bp:birth_grid=0", "birth_grid"},
-                         Bad{"tbd-bp:support_sigmas=0.5", "support_sigmas"},
-                         Bad{"tbd-bp:detection_threshold=1", "detection_threshold"},
-                         Bad{"tbd-bp:pruning_threshold=0.5", "pruning_threshold"},
-                         Bad{"tbd-bp:pruning_threshold=0.7", "pruning_threshold"},
-                         Bad{"tbd-bp:detection_threshold=0.2,pruning_threshold=0.2", "pruning_threshold"},
-                         Bad{"tbd-bp:pruning_threshold=-0.1", "pruning_threshold"}}) {
-    INFO(bad.spec);
-    const std::string message = input_error_message([&] { make_tbd_tracker(bad.spec); });
-    INFO(message);
-    CHECK(message.find(bad.field) != std::string::npos);
-    CHECK(message.find("tbd-bp") != std::string::npos);
-  }
+  check_tbd_option_errors("tbd-bp", {{"tbd-bp:iterations=0", "iterations"},
+                                     {"tbd-bp:iterations=21", "iterations"},
+                                     {"tbd-bp:particles=5", "particles"},
+                                     {"tbd-bp:birth_grid=0", "birth_grid"},
+                                     {"tbd-bp:support_sigmas=0.5", "support_sigmas"},
+                                     {"tbd-bp:detection_threshold=1", "detection_threshold"},
+                                     {"tbd-bp:pruning_threshold=0.5", "pruning_threshold"},
+                                     {"tbd-bp:pruning_threshold=0.7", "pruning_threshold"},
+                                     {"tbd-bp:detection_threshold=0.2,pruning_threshold=0.2", "pruning_threshold"},
+                                     {"tbd-bp:pruning_threshold=-0.1", "pruning_threshold"}});
   // The edges of the valid ranges are accepted.
   CHECK_NOTHROW(make_tbd_tracker("tbd-bp:iterations=1,particles=10,pruning_threshold=0.49"));
   CHECK_NOTHROW(make_tbd_tracker("tbd-bp:iterations=20,pruning_threshold=0,detection_threshold=0.01"));
@@ -349,14 +268,8 @@ TEST_CASE("tbd-bp: exact kappa with births on a grid is skipped", "[tbd][tbd_bp]
   RandomStream rng(kSeed, 9, 0);
   p.frames.push_back(draw_frame(p.sensor, p.amplitude, {}, rng));
   const auto tracker = dabench::make_tbd_tracker("tbd-bp:exact_kappa=true,particles=100");
-  tracker->start(p);
-  std::vector<TbdEstimate> estimates;
-  SolveReport report;
-  tracker->step(0, estimates, report);
-  INFO(report.skipped);
+  const SolveReport report = check_first_step_skipped(*tracker, p, "exact_kappa");
   CHECK_FALSE(report.skipped.empty());
-  CHECK(report.skipped.find("exact_kappa") != std::string::npos);
-  CHECK(estimates.empty());
 }
 
 TEST_CASE("tbd-bp: merge_distance deletes a duplicate PO and keeps distant ones", "[tbd][tbd_bp]") {
@@ -364,14 +277,7 @@ TEST_CASE("tbd-bp: merge_distance deletes a duplicate PO and keeps distant ones"
   // its own PO; no births.
   TbdProblem p = grid_problem(12, TbdSignal::deterministic, kSeed, 9);
   p.filter.birth_mean = 0.0;
-  auto prior_at = [](double x, double y) {
-    TbdPrior prior;
-    prior.mean = Eigen::Vector4d(x, y, 0.0, 0.0);
-    prior.covariance = Eigen::Vector4d(0.01, 0.01, 1e-4, 1e-4).asDiagonal();
-    prior.existence = 0.9;
-    return prior;
-  };
-  p.initial_objects = {prior_at(5.5, 6.5), prior_at(5.7, 6.4), prior_at(9.5, 6.5)};
+  p.initial_objects = {prior_at(5.5, 6.5, 0.01, 0.9), prior_at(5.7, 6.4, 0.01, 0.9), prior_at(9.5, 6.5, 0.01, 0.9)};
   RandomStream rng(kSeed, 9, 0);
   p.frames.push_back(draw_frame(p.sensor, p.amplitude, {{5.5, 6.5}, {9.5, 6.5}}, rng));
   for (const double distance : {0.0, 1.0}) {
@@ -382,7 +288,7 @@ TEST_CASE("tbd-bp: merge_distance deletes a duplicate PO and keeps distant ones"
     options.interaction = false;  // both duplicates claim the object: r̃ ≈ 1 each
     options.merge_distance = distance;
     TbdBp tracker(options);
-    const auto estimates = run_all(tracker, p);
+    const auto estimates = estimates_per_step(tracker, p);
     const auto& objects = tracker.objects();
     if (distance == 0.0) {
       CHECK(objects.size() == 3);
@@ -396,6 +302,6 @@ TEST_CASE("tbd-bp: merge_distance deletes a duplicate PO and keeps distant ones"
       CHECK(objects[1].label == 2);
     }
   }
-  CHECK_THAT(dabench::test::input_error_message([] { dabench::make_tbd_tracker("tbd-bp:merge_distance=-1"); }),
+  CHECK_THAT(input_error_message([] { dabench::make_tbd_tracker("tbd-bp:merge_distance=-1"); }),
              Catch::Contains("merge_distance"));
 }

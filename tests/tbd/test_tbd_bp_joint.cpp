@@ -22,24 +22,10 @@
 
 namespace {
 
-using dabench::RandomStream;
-using dabench::SolveReport;
-using dabench::TbdBp;
-using dabench::TbdBpOptions;
-using dabench::TbdEstimate;
-using dabench::TbdPrior;
-using dabench::TbdProblem;
-using dabench::TbdSignal;
+using namespace dabench;
+using namespace dabench::test;
 
 constexpr std::uint64_t kSeed = 20231205;
-
-TbdPrior known_at(double x, double y) {
-  TbdPrior prior;
-  prior.mean = Eigen::Vector4d(x, y, 0.0, 0.0);
-  prior.covariance = Eigen::Vector4d(0.02, 0.02, 1e-4, 1e-4).asDiagonal();
-  prior.existence = 1.0;
-  return prior;
-}
 
 // `steps` frames of a 12 × 12 D2 grid holding objects at `positions` (static).
 TbdProblem static_scene(const std::vector<Eigen::Vector2d>& positions, int steps, std::uint32_t trial) {
@@ -80,7 +66,7 @@ Outcome run(const TbdProblem& p, int schedule, int iterations) {
 TEST_CASE("tbd-bp joint schedule: without new POs it is the serial schedule, bit for bit", "[tbd][tbd_bp][joint]") {
   TbdProblem p = static_scene({{5.5, 6.5}, {6.6, 6.9}}, 3, 0);
   p.filter.birth_mean = 0.0;
-  p.initial_objects = {known_at(5.5, 6.5), known_at(6.6, 6.9)};
+  p.initial_objects = {prior_at(5.5, 6.5, 0.02, 1.0), prior_at(6.6, 6.9, 0.02, 1.0)};
   for (const int iterations : {1, 2, 3}) {
     INFO("L = " << iterations);
     const Outcome serial = run(p, TbdBp::kSerial, iterations), joint = run(p, TbdBp::kJoint, iterations);
@@ -93,7 +79,7 @@ TEST_CASE("tbd-bp joint schedule: legacy POs hear kept new POs from the second i
   // (4σ_h = 2.83 m) overlap. At step 0 the new one is born; the legacy PO's particles after the
   // step depend on the new PO's messages only if it heard them (L ≥ 2 under `joint`).
   TbdProblem p = static_scene({{5.5, 6.5}, {7.5, 6.5}}, 1, 1);
-  p.initial_objects = {known_at(5.5, 6.5)};
+  p.initial_objects = {prior_at(5.5, 6.5, 0.02, 1.0)};
   const Outcome serial1 = run(p, TbdBp::kSerial, 1), joint1 = run(p, TbdBp::kJoint, 1);
   const Outcome serial2 = run(p, TbdBp::kSerial, 2), joint2 = run(p, TbdBp::kJoint, 2);
   for (const Outcome* o : {&serial1, &joint1, &serial2, &joint2}) {

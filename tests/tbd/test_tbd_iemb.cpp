@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <string>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -25,7 +24,8 @@
 #include "harness/tbd/problem.hpp"
 #include "harness/tbd/registry.hpp"
 #include "scenarios/tbd/tbd.hpp"
-#include "tests/support/input_error.hpp"
+#include "tests/support/tbd_frames.hpp"
+#include "tests/support/tbd_runs.hpp"
 
 namespace {
 
@@ -50,9 +50,14 @@ using dabench::TbdProblem;
 using dabench::TbdSensor;
 using dabench::TbdSignal;
 
-constexpr std::uint64_t kSeed = 20240131;
+using dabench::test::check_first_step_skipped;
+using dabench::test::check_identical_estimates;
+using dabench::test::estimates_per_step;
+using dabench::test::follow_known_object;
+using dabench::test::KnownObject;
+using dabench::test::signal_name;
 
-const char* signal_name(TbdSignal s) { return s == TbdSignal::fluctuating ? "D1 fluctuating" : "D2 deterministic"; }
+constexpr std::uint64_t kSeed = 20240131;
 
 // The scenario's readings (scenarios/tbd/tbd.hpp): σ² = 1, σ_S² = 1, γ = 60, σ_h² = 0.5 (D1) or 1.5 (D2).
 TbdProblem grid_problem(int size, TbdSignal signal, std::uint32_t trial) {
@@ -71,48 +76,11 @@ Eigen::Matrix2Xd frame_of(const TbdProblem& p, const std::vector<Eigen::Vector2d
   return frame;
 }
 
-// One object from cell (5, 6)'s centre of a 12 × 12 grid with a known prior (r = 1, small
-// covariance), moving by the problem's NCV model; truth per step.
-struct OneObject {
-  TbdProblem problem;
-  std::vector<Eigen::Vector4d> truth;
-};
-
-OneObject one_object(TbdSignal signal, std::uint32_t trial, int steps) {
-  OneObject o;
-  o.problem = grid_problem(12, signal, trial);
-  TbdProblem& p = o.problem;
+// known_object (tests/support/tbd_frames.hpp) on a 12 × 12 grid of the scenario's readings,
+// frames from the scenario's helpers on stream 1.
+KnownObject one_object(TbdSignal signal, std::uint32_t trial, int steps) {
   RandomStream rng(kSeed, 1, trial);
-  Eigen::Vector4d x(5.5, 6.5, 0.1, -0.05);
-  TbdPrior prior;
-  prior.mean = x;
-  prior.covariance = Eigen::Vector4d(0.01, 0.01, 1e-4, 1e-4).asDiagonal();
-  p.initial_objects.push_back(prior);
-  const double t = p.motion.scan_interval;
-  const double sd = std::sqrt(p.motion.driving_noise_variance);
-  for (int k = 0; k < steps; ++k) {
-    if (k > 0) {
-      const double ax = sd * rng.normal(), ay = sd * rng.normal();
-      x = Eigen::Vector4d(x(0) + t * x(2) + 0.5 * t * t * ax, x(1) + t * x(3) + 0.5 * t * t * ay, x(2) + t * ax,
-                          x(3) + t * ay);
-    }
-    o.truth.push_back(x);
-    p.frames.push_back(frame_of(p, {x.head<2>()}, rng));
-  }
-  return o;
-}
-
-std::vector<std::vector<TbdEstimate>> run_all(dabench::TbdTracker& tracker, const TbdProblem& problem) {
-  std::vector<std::vector<TbdEstimate>> out;
-  tracker.start(problem);
-  for (int k = 0; k < problem.steps(); ++k) {
-    std::vector<TbdEstimate> estimates;
-    SolveReport report;
-    tracker.step(k, estimates, report);
-    REQUIRE(report.skipped.empty());
-    out.push_back(estimates);
-  }
-  return out;
+  return dabench::test::known_object(grid_problem(12, signal, trial), steps, rng, frame_of);
 }
 
 }  // namespace
@@ -553,19 +521,9 @@ TEST_CASE("tbd-iemb: one known object is tracked for 10 steps near the truth (D1
     double squared = 0.0, traces = 0.0, largest_ratio = 0.0;
     for (std::uint32_t trial = 0; trial < 20; ++trial) {
       INFO("trial " << trial);
-      const OneObject o = one_object(signal, trial, 10);
+      const KnownObject o = one_object(signal, trial, 10);
       TbdIemb tracker(TbdIembOptions{});
-      tracker.start(o.problem);
-      for (int k = 0; k < o.problem.steps(); ++k) {
-        INFO("step " << k);
-        std::vector<TbdEstimate> estimates;
-        SolveReport report;
-        tracker.step(k, estimates, report);
-        REQUIRE(report.skipped.empty());
-        REQUIRE(estimates.size() == 1);
-        const TbdEstimate& e = estimates[0];
-        CHECK(e.label == 0);
-        CHECK(e.existence > 0.9);
+      follow_known_object(tracker, o.problem, [&](int k, const TbdEstimate& e) {
         const GaussianBernoulli& b = tracker.bernoullis().at(0);
         REQUIRE(b.label == 0);
         CHECK((b.mean - e.state).norm() == 0.0);
@@ -576,7 +534,7 @@ TEST_CASE("tbd-iemb: one known object is tracked for 10 steps near the truth (D1
         largest_ratio = std::max(largest_ratio, error / std::sqrt(trace));
         squared += error * error;
         traces += trace;
-      }
+      });
     }
     INFO("sum of squared errors / sum of traces " << squared / traces << ", largest error / sqrt(trace) " << largest_ratio);
     CHECK(squared / traces > 0.6);
@@ -604,7 +562,7 @@ TEST_CASE("tbd-iemb: pure noise gives (almost) no estimates", "[tbd][tbd_iemb]")
       for (int k = 0; k < 10; ++k) p.frames.push_back(frame_of(p, {}, rng));
       TbdIemb tracker(TbdIembOptions{});
       int run = 0;
-      for (const auto& e : run_all(tracker, p)) run += static_cast<int>(e.size());
+      for (const auto& e : estimates_per_step(tracker, p)) run += static_cast<int>(e.size());
       reporting_runs += run > 0;
       total += run;
       held += static_cast<int>(tracker.bernoullis().size());
@@ -637,7 +595,7 @@ TEST_CASE("tbd-iemb: a new object is reported once, by one Bernoulli, from its f
         x += v;
       }
       TbdIemb tracker(TbdIembOptions{});
-      const auto estimates = run_all(tracker, p);
+      const auto estimates = estimates_per_step(tracker, p);
       for (int k = 0; k < 10; ++k) {
         INFO("step " << k);
         REQUIRE(estimates[k].size() == 1);
@@ -650,32 +608,20 @@ TEST_CASE("tbd-iemb: a new object is reported once, by one Bernoulli, from its f
 
 TEST_CASE("tbd-iemb: same input gives bit-identical output, also from a restarted tracker", "[tbd][tbd_iemb]") {
   // Two Bernoullis' worth of work: a known object, and a second object born from the grid.
-  OneObject o = one_object(TbdSignal::fluctuating, 3, 8);
+  KnownObject o = one_object(TbdSignal::fluctuating, 3, 8);
   RandomStream rng(kSeed, 7, 0);
   for (int k = 0; k < o.problem.steps(); ++k) {
     dabench::add_tbd_objects(o.problem.sensor, o.problem.amplitude, {Eigen::Vector2d(8.2 - 0.1 * k, 3.4)}, rng,
                              o.problem.frames[k]);
   }
   TbdIemb first(TbdIembOptions{}), second(TbdIembOptions{});
-  const auto a = run_all(first, o.problem);
-  const auto b = run_all(second, o.problem);
-  const auto c = run_all(first, o.problem);  // start() forgets the previous run
+  const auto a = estimates_per_step(first, o.problem);
+  const auto b = estimates_per_step(second, o.problem);
+  const auto c = estimates_per_step(first, o.problem);  // start() forgets the previous run
+  check_identical_estimates(a, b);
+  check_identical_estimates(a, c);
   std::size_t reported = 0;
-  for (int k = 0; k < o.problem.steps(); ++k) {
-    REQUIRE(a[k].size() == b[k].size());
-    REQUIRE(a[k].size() == c[k].size());
-    reported += a[k].size();
-    for (std::size_t n = 0; n < a[k].size(); ++n) {
-      CHECK(a[k][n].label == b[k][n].label);
-      CHECK(a[k][n].label == c[k][n].label);
-      CHECK(a[k][n].existence == b[k][n].existence);
-      CHECK(a[k][n].existence == c[k][n].existence);
-      for (int d = 0; d < 4; ++d) {
-        CHECK(a[k][n].state(d) == b[k][n].state(d));
-        CHECK(a[k][n].state(d) == c[k][n].state(d));
-      }
-    }
-  }
+  for (const auto& step : a) reported += step.size();
   CHECK(reported >= 2 * static_cast<std::size_t>(o.problem.steps()) - 2);  // both objects, nearly always
 
   // beliefs(): the sigma points of every Bernoulli, which give back its mean and covariance.
@@ -704,12 +650,12 @@ TEST_CASE("tbd-iemb: same input gives bit-identical output, also from a restarte
 TEST_CASE("tbd-iemb: the measurement reading (auto, complex under D1, power under D2)", "[tbd][tbd_iemb]") {
   // Under D1, E[z_j | x] = 0: with measurement=complex the SLR gives A = 0, so the update
   // leaves the mean and covariance of the prior exactly as they were; only r moves.
-  OneObject o = one_object(TbdSignal::fluctuating, 0, 1);
+  KnownObject o = one_object(TbdSignal::fluctuating, 0, 1);
   o.problem.initial_objects[0].existence = 0.5;
   o.problem.initial_objects[0].mean.head<2>() += Eigen::Vector2d(0.3, -0.2);  // off the truth, s.d. 0.32 m
   o.problem.initial_objects[0].covariance.topLeftCorner<2, 2>() = 0.1 * Eigen::Matrix2d::Identity();
   const auto complex = dabench::make_tbd_tracker("tbd-iemb:measurement=complex");
-  run_all(*complex, o.problem);
+  estimates_per_step(*complex, o.problem);
   const auto& tracker = dynamic_cast<const TbdIemb&>(*complex);
   CHECK(tracker.measurement_kind() == IembMeasurementKind::complex);
   REQUIRE(!tracker.bernoullis().empty());
@@ -731,9 +677,9 @@ TEST_CASE("tbd-iemb: the measurement reading (auto, complex under D1, power unde
   Eigen::Matrix4d average_cov = Eigen::Matrix4d::Zero();
   TbdIemb power(TbdIembOptions{});
   for (std::uint32_t trial = 0; trial < 40; ++trial) {
-    OneObject frame = one_object(TbdSignal::fluctuating, 100 + trial, 1);
+    KnownObject frame = one_object(TbdSignal::fluctuating, 100 + trial, 1);
     frame.problem.initial_objects = o.problem.initial_objects;
-    run_all(power, frame.problem);
+    estimates_per_step(power, frame.problem);
     CHECK(power.measurement_kind() == IembMeasurementKind::power);
     REQUIRE(!power.bernoullis().empty());
     average += power.bernoullis()[0].mean.head<2>() / 40.0;
@@ -747,45 +693,31 @@ TEST_CASE("tbd-iemb: the measurement reading (auto, complex under D1, power unde
   CHECK((average - expected.head<2>()).norm() < 0.08);
 
   // Under D2, auto is complex and power is refused (the objects' means would interfere in ‖z‖²).
-  const OneObject d2 = one_object(TbdSignal::deterministic, 0, 1);
+  const KnownObject d2 = one_object(TbdSignal::deterministic, 0, 1);
   TbdIemb automatic(TbdIembOptions{});
   automatic.start(d2.problem);
   CHECK(automatic.measurement_kind() == IembMeasurementKind::complex);
   const auto refused = dabench::make_tbd_tracker("tbd-iemb:measurement=power");
-  refused->start(d2.problem);
-  std::vector<TbdEstimate> estimates;
-  SolveReport report;
-  refused->step(0, estimates, report);
-  INFO(report.skipped);
-  CHECK(report.skipped.find("measurement=power") != std::string::npos);
-  CHECK(estimates.empty());
+  check_first_step_skipped(*refused, d2.problem, "measurement=power");
 }
 
 TEST_CASE("tbd-iemb: invalid options are input errors naming the field", "[tbd][tbd_iemb]") {
   using dabench::make_tbd_tracker;
-  using dabench::test::input_error_message;
-  struct Bad {
-    const char* spec;
-    const char* field;
-  };
-  for (const Bad& bad : {Bad{"tbd-iemb:measurement=intensity", "measurement"},
-                         Bad{"tbd-iemb:power_likelihood=poisson", "power_likelihood"},
-                         Bad{"tbd-iemb:iterations=0", "iterations"}, Bad{"tbd-iemb:iterations=101", "iterations"},
-                         Bad{"tbd-iemb:kl_threshold=0", "kl_threshold"}, Bad{"tbd-iemb:kl_threshold=inf", "kl_threshold"},
-                         Bad{"tbd-iemb:support_sigmas=0.5", "support_sigmas"},
-                         Bad{"tbd-iemb:position_sigmas=-1", "position_sigmas"},
-                         Bad{"tbd-iemb:max_window=2", "max_window"}, Bad{"tbd-iemb:max_window=65", "max_window"},
-                         Bad{"tbd-iemb:detection_threshold=1", "detection_threshold"},
-                         Bad{"tbd-iemb:pruning_threshold=0.5", "pruning_threshold"},
-                         Bad{"tbd-iemb:pruning_threshold=-0.1", "pruning_threshold"},
-                         Bad{"tbd-iemb:merge_distance=-1", "merge_distance"},
-                         Bad{"tbd-iemb:merge=1", "merge"}}) {
-    INFO(bad.spec);
-    const std::string message = input_error_message([&] { make_tbd_tracker(bad.spec); });
-    INFO(message);
-    CHECK(message.find(bad.field) != std::string::npos);
-    CHECK(message.find("tbd-iemb") != std::string::npos);
-  }
+  dabench::test::check_tbd_option_errors("tbd-iemb", {{"tbd-iemb:measurement=intensity", "measurement"},
+                                                      {"tbd-iemb:power_likelihood=poisson", "power_likelihood"},
+                                                      {"tbd-iemb:iterations=0", "iterations"},
+                                                      {"tbd-iemb:iterations=101", "iterations"},
+                                                      {"tbd-iemb:kl_threshold=0", "kl_threshold"},
+                                                      {"tbd-iemb:kl_threshold=inf", "kl_threshold"},
+                                                      {"tbd-iemb:support_sigmas=0.5", "support_sigmas"},
+                                                      {"tbd-iemb:position_sigmas=-1", "position_sigmas"},
+                                                      {"tbd-iemb:max_window=2", "max_window"},
+                                                      {"tbd-iemb:max_window=65", "max_window"},
+                                                      {"tbd-iemb:detection_threshold=1", "detection_threshold"},
+                                                      {"tbd-iemb:pruning_threshold=0.5", "pruning_threshold"},
+                                                      {"tbd-iemb:pruning_threshold=-0.1", "pruning_threshold"},
+                                                      {"tbd-iemb:merge_distance=-1", "merge_distance"},
+                                                      {"tbd-iemb:merge=1", "merge"}});
   CHECK_NOTHROW(make_tbd_tracker("tbd-iemb:iterations=1,max_window=3,pruning_threshold=0,merge_distance=0"));
   CHECK_NOTHROW(make_tbd_tracker("tbd-iemb:iterations=100,max_window=64,detection_threshold=0.01,pruning_threshold=0.005"));
 }

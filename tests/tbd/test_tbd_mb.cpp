@@ -29,41 +29,20 @@
 #include "harness/tbd/registry.hpp"
 #include "tests/support/input_error.hpp"
 #include "tests/support/tbd_frames.hpp"
+#include "tests/support/tbd_runs.hpp"
 
 namespace {
 
-using dabench::RandomStream;
-using dabench::SolveReport;
-using dabench::TbdEstimate;
-using dabench::TbdMb;
-using dabench::TbdMbOptions;
-using dabench::TbdPrior;
-using dabench::TbdProblem;
-using dabench::TbdSignal;
-using dabench::test::draw_frame;
-using dabench::test::grid_problem;
+using namespace dabench;
+using namespace dabench::test;
 
 constexpr std::uint64_t kSeed = 20210901;
 
-TbdPrior prior_at(double x, double y, double variance, double existence) {
-  TbdPrior prior;
-  prior.mean = Eigen::Vector4d(x, y, 0.0, 0.0);
-  prior.covariance = Eigen::Vector4d(variance, variance, 1e-4, 1e-4).asDiagonal();
-  prior.existence = existence;
-  return prior;
-}
-
-std::vector<std::vector<TbdEstimate>> run_all(dabench::TbdTracker& tracker, const TbdProblem& problem) {
-  std::vector<std::vector<TbdEstimate>> out;
-  tracker.start(problem);
-  for (int k = 0; k < problem.steps(); ++k) {
-    std::vector<TbdEstimate> estimates;
-    SolveReport report;
-    tracker.step(k, estimates, report);
-    REQUIRE(report.skipped.empty());
-    CHECK(report.converged);
-    out.push_back(estimates);
-  }
+// estimates_per_step (tests/support/tbd_runs.hpp), also checking that every step converged.
+EstimatesPerStep converged_estimates(dabench::TbdTracker& tracker, const TbdProblem& problem) {
+  std::vector<SolveReport> reports;
+  EstimatesPerStep out = dabench::test::estimates_per_step(tracker, problem, &reports);
+  for (const SolveReport& report : reports) CHECK(report.converged);
   return out;
 }
 
@@ -86,7 +65,7 @@ TEST_CASE("tbd-mb: one Bernoulli without births is the Bayes update with the sup
     options.particles = 500;
     options.association = association;
     TbdMb mb(options);
-    run_all(mb, p);
+    converged_estimates(mb, p);
     if (!present && mb.objects().empty()) continue;  // recycled: r̃ below 0.1
     REQUIRE(mb.objects().size() == 1);
 
@@ -137,7 +116,7 @@ TEST_CASE("tbd-mb: two Bernoullis on one object's cell do not both stay; without
   TbdMbOptions options;
   options.particles = 400;
   TbdMb mb(options);
-  run_all(mb, p);
+  converged_estimates(mb, p);
   // Exactly, r̃₀ = r̃₁ ≈ ½. The SPA on this loopy pair (they share their whole support, and ℓ
   // is about e^500) settles, with the serial schedule, on the fixed point where the first
   // Bernoulli holds the object and the second is recycled: never both.
@@ -148,7 +127,7 @@ TEST_CASE("tbd-mb: two Bernoullis on one object's cell do not both stay; without
   // association = none: each Bernoulli alone, both certain, both reported.
   options.association = TbdMb::kNone;
   TbdMb none(options);
-  const auto reported = run_all(none, p);
+  const auto reported = converged_estimates(none, p);
   REQUIRE(none.objects().size() == 2);
   CHECK(none.objects()[0].existence > 0.999);
   CHECK(none.objects()[1].existence > 0.999);
@@ -159,7 +138,7 @@ TEST_CASE("tbd-mb: two Bernoullis on one object's cell do not both stay; without
   alone.iterations = 1;
   alone.interaction = false;
   dabench::TbdBp bp(alone);
-  run_all(bp, p);
+  converged_estimates(bp, p);
   REQUIRE(bp.objects().size() == 2);
   CHECK(bp.objects()[0].existence > 0.999);
   CHECK(bp.objects()[1].existence > 0.999);
@@ -178,7 +157,7 @@ TEST_CASE("tbd-mb: an object appearing in a static scene is born, reported near 
     TbdMbOptions options;
     options.particles = 1000;
     TbdMb mb(options);
-    const auto estimates = run_all(mb, p);
+    const auto estimates = converged_estimates(mb, p);
     CHECK(estimates[0].empty());
     CHECK(estimates[1].empty());
     for (int k = 2; k < p.steps(); ++k) {
@@ -208,7 +187,7 @@ TEST_CASE("tbd-mb: without exclusivity the new Bernoullis around one object are 
     TbdMb exclusive(options);
     options.association = TbdMb::kNone;
     TbdMb none(options);
-    const auto one = run_all(exclusive, p), many = run_all(none, p);
+    const auto one = converged_estimates(exclusive, p), many = converged_estimates(none, p);
     CHECK(one[0].size() == 1);
     CHECK(many[0].size() >= 2);
     for (const TbdEstimate& e : many[0]) CHECK((e.state.head<2>() - Eigen::Vector2d(6.5, 5.5)).norm() < 1.5);
@@ -255,8 +234,8 @@ TEST_CASE("tbd-mb: same seed gives identical output; bad options are named", "[t
   TbdMbOptions options;
   options.particles = 300;
   TbdMb first(options), second(options);
-  const auto a = run_all(first, p);
-  const auto b = run_all(second, p);
+  const auto a = converged_estimates(first, p);
+  const auto b = converged_estimates(second, p);
   for (int k = 0; k < p.steps(); ++k) {
     REQUIRE(a[k].size() == b[k].size());
     for (std::size_t e = 0; e < a[k].size(); ++e) {

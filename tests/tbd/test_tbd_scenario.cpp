@@ -14,22 +14,16 @@
 #include "scenarios/tbd/tbd.hpp"
 #include "tests/support/input_error.hpp"
 #include "tests/support/kolmogorov_smirnov.hpp"
+#include "tests/support/scenario_draws.hpp"
 
 namespace {
 
-using dabench::KeyValue;
-using dabench::RandomStream;
-using dabench::TbdImageOptions;
-using dabench::TbdImageScenario;
-using dabench::TbdSample;
-using dabench::TbdSensor;
-using dabench::TbdTruth;
+using namespace dabench;
+using dabench::test::RunningMoments;
 
 constexpr std::uint64_t kSeed = 20230711;
 
-TbdImageScenario scenario_from(const std::vector<KeyValue>& settings) {
-  return TbdImageScenario(dabench::make_options<TbdImageOptions>(settings, "tbd"));
-}
+constexpr auto scenario_from = &dabench::test::scenario_from<TbdImageScenario>;
 
 // For the truth tests: the same 32 m region in 8 × 8 cells of 4 m, so the same law of the truth
 // (the anchors are fractions of the region) at 1/16 of the cost of the frames.
@@ -39,17 +33,6 @@ std::vector<KeyValue> coarse(std::vector<KeyValue> settings) {
 }
 
 double ks_critical_1_percent(std::size_t n) { return 1.628 / std::sqrt(static_cast<double>(n)); }
-
-struct Moments {
-  double n = 0.0, sum = 0.0, squares = 0.0;
-  void add(double v) {
-    n += 1.0;
-    sum += v;
-    squares += v * v;
-  }
-  double mean() const { return sum / n; }
-  double sd() const { return std::sqrt((squares - sum * sum / n) / (n - 1.0)); }
-};
 
 // Positions of the objects existing at step k.
 std::vector<Eigen::Vector2d> positions_at(const TbdTruth& truth, int k) {
@@ -89,7 +72,7 @@ TEST_CASE("tbd scenario: background cells are Rayleigh(sigma) in magnitude", "[t
     const TbdSensor& sensor = scenario.sensor();
     const double reach = TbdImageScenario::kSupportRadius * std::sqrt(sensor.spread_variance);
     std::vector<double> pit;  // F(‖z_j‖) = 1 − exp(−‖z‖²/(2σ²))
-    Moments magnitude;
+    RunningMoments magnitude;
     double below = 0.0;
     TbdSample sample;
     for (int run = 0; run < 12; ++run) {
@@ -174,7 +157,7 @@ TEST_CASE("tbd scenario: a cell-centred d1 object adds sigma_S^2 gamma g_j to E|
     REQUIRE(sensor.spread_variance == 0.5);
     const Eigen::Vector2d p{16.5, 16.5};  // centre of cell (16, 16)
     constexpr int kDraws = 4000;
-    Moments own, side, diagonal, total;
+    RunningMoments own, side, diagonal, total;
     Eigen::Matrix2Xd frame;
     for (int draw = 0; draw < kDraws; ++draw) {
       RandomStream rng(kSeed, 2, draw);
@@ -210,7 +193,7 @@ TEST_CASE("tbd scenario: a cell-centred d1 object adds sigma_S^2 gamma g_j to E|
 TEST_CASE("tbd scenario: toy frames hold the energy of two objects, 2 x 188.5", "[tbd][scenario]") {
   const TbdImageScenario scenario = scenario_from({{"layout", "toy"}});
   constexpr int kRuns = 3000;
-  Moments total;
+  RunningMoments total;
   TbdSample sample;
   for (int run = 0; run < kRuns; ++run) {
     RandomStream rng(kSeed, 3, run);
@@ -321,7 +304,7 @@ TEST_CASE("tbd scenario: crossing truth has the documented lifetimes, anchors an
   const TbdImageScenario scenario = scenario_from(coarse({}));
   const TbdSensor& sensor = scenario.sensor();
   constexpr int kRuns = 500;
-  Moments birth, death, mid_x, mid_y;
+  RunningMoments birth, death, mid_x, mid_y;
   int entered = 0, left = 0;
   TbdSample sample;
   for (int run = 0; run < kRuns; ++run) {

@@ -12,40 +12,24 @@
 
 #include "harness/tracking/registry.hpp"
 #include "scenarios/tracking/othr.hpp"
+#include "tests/support/scenario_draws.hpp"
 
 namespace {
 
-using dabench::KeyValue;
-using dabench::OthrOptions;
-using dabench::OthrScenario;
-using dabench::RandomStream;
-using dabench::TrackingScenarioSample;
+using namespace dabench;
+using dabench::test::RunningMoments;
 
 constexpr std::uint64_t kSeed = 20190557;
 
-OthrScenario scenario_from(const std::vector<KeyValue>& settings) {
-  return OthrScenario(dabench::make_options<OthrOptions>(settings, "othr"));
-}
-
-// Running mean and variance.
-struct Moments {
-  double n = 0.0, sum = 0.0, squares = 0.0;
-  void add(double v) {
-    n += 1.0;
-    sum += v;
-    squares += v * v;
-  }
-  double mean() const { return sum / n; }
-  double variance() const { return (squares - sum * sum / n) / (n - 1.0); }
-};
+constexpr auto scenario_from = &dabench::test::scenario_from<OthrScenario>;
 
 }  // namespace
 
 TEST_CASE("othr scenario: clutter count is Poisson with mean N_c and uniform over the region", "[othr_scenario]") {
   const OthrScenario scenario = scenario_from({{"clutter", "125"}});
   constexpr int kRuns = 200;
-  Moments count;
-  Moments coordinate[3];
+  RunningMoments count;
+  RunningMoments coordinate[3];
   TrackingScenarioSample sample;
   for (int run = 0; run < kRuns; ++run) {
     RandomStream rng(kSeed, 0, run);
@@ -154,7 +138,7 @@ TEST_CASE("othr scenario: truth increments have the NCV process covariance Q", "
   const OthrScenario scenario = scenario_from({{"clutter", "0"}});
   constexpr int kRuns = 100;
   TrackingScenarioSample sample;
-  Moments whitened[4];
+  RunningMoments whitened[4];
   for (int run = 0; run < kRuns; ++run) {
     RandomStream rng(kSeed, 3, run);
     scenario.generate(rng, sample);
@@ -184,7 +168,7 @@ TEST_CASE("othr scenario: measurement residuals against eq 57 of the truth have 
   constexpr int kRuns = 100;
   const double sigma[3] = {5.0, 0.001, 0.003};
   TrackingScenarioSample sample;
-  Moments residual[4][3];  // per path, per coordinate: residual / σ
+  RunningMoments residual[4][3];  // per path, per coordinate: residual / σ
   for (int run = 0; run < kRuns; ++run) {
     RandomStream rng(kSeed, 4, run);
     scenario.generate(rng, sample);
@@ -200,7 +184,7 @@ TEST_CASE("othr scenario: measurement residuals against eq 57 of the truth have 
   for (int tau = 0; tau < 4; ++tau) {
     for (int c = 0; c < 3; ++c) {
       INFO("path " << tau << " coordinate " << c);
-      const Moments& m = residual[tau][c];
+      const RunningMoments& m = residual[tau][c];
       REQUIRE(m.n > 5000.0);  // ≈ 100 · 82 · 0.75 = 6150
       CHECK(std::abs(m.mean()) < 5.0 / std::sqrt(m.n));
       CHECK(std::abs(m.variance() - 1.0) < 5.0 * std::sqrt(2.0 / m.n));

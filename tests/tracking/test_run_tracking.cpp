@@ -13,7 +13,6 @@
 //  - unknown trackers and references are one-line errors, also from the command line.
 #include <catch2/catch.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -221,13 +220,6 @@ class FirstMeasurementTracker final : public dabench::Tracker {
 DABENCH_REGISTER_TRACKER(FirstMeasurementTracker);
 
 // ---- helpers ------------------------------------------------------------------------------
-
-bool is_time_column(const std::string& name) { return name.rfind("tet_s", 0) == 0; }
-
-CsvTable without_time(const TempDir& dir, const std::string& relative) {
-  REQUIRE(dir.exists(relative));
-  return parse_csv(dir.read(relative)).without(is_time_column);
-}
 
 // Rows of `table` whose column `key` equals `value`.
 std::vector<std::size_t> rows_where(const CsvTable& table, const std::string& key, const std::string& value) {
@@ -501,7 +493,7 @@ TEST_CASE("run tracking: othr, 1 and 2 threads give identical files", "[run][tra
   dir.write("o.ini", kOthr);
   run_in(dir, "o.ini", "one", 1);
   run_in(dir, "o.ini", "two", 2);
-  const CsvTable trials = without_time(dir, "one/trials.csv");
+  const CsvTable trials = without_timing(dir, "one/trials.csv");
   REQUIRE(trials.rows.size() == 4 * kOthrTrials * 2);
   CHECK(trials.header[1] == "pd");
   CHECK(trials.header[2] == "clutter");
@@ -510,10 +502,10 @@ TEST_CASE("run tracking: othr, 1 and 2 threads give identical files", "[run][tra
   CHECK(trials.at(3 * kOthrTrials * 2, "pd") == "0.4");
   CHECK(trials.at(3 * kOthrTrials * 2, "clutter") == "20");
   for (std::size_t r = 0; r < trials.rows.size(); ++r) CHECK(trials.at(r, "status") == "ok");
-  check_same(trials, without_time(dir, "two/trials.csv"));
+  check_same(trials, without_timing(dir, "two/trials.csv"));
   CHECK(dir.read("one/tracks.csv") == dir.read("two/tracks.csv"));
   CHECK(dir.read("one/measurements.csv") == dir.read("two/measurements.csv"));
-  check_same(without_time(dir, "one/summary.csv"), without_time(dir, "two/summary.csv"));
+  check_same(without_timing(dir, "one/summary.csv"), without_timing(dir, "two/summary.csv"));
   // Truth rows: targets 1, 2 alive at scans 0..9, targets 3, 4 at 9 (lifetimes cut at K = 10).
   const CsvTable tracks = parse_csv(dir.read("one/tracks.csv"));
   const auto truth = rows_where(tracks, "algorithm", "truth");
@@ -543,8 +535,8 @@ TEST_CASE("run tracking: othr, --resume after a hard kill finishes identically",
   const std::string tracks = dir.read("A/tracks.csv");
   const std::string measurements = dir.read("A/measurements.csv");
   const std::string meta = dir.read("A/meta.json");
-  const CsvTable reference = without_time(dir, "A/trials.csv");
-  const CsvTable summary = without_time(dir, "A/summary.csv");
+  const CsvTable reference = without_timing(dir, "A/trials.csv");
+  const CsvTable summary = without_timing(dir, "A/summary.csv");
   const std::size_t trials_header = trials.find('\n') + 1, tracks_header = tracks.find('\n') + 1;
   const std::size_t measurements_header = measurements.find('\n') + 1;
   // (what, trials.csv, tracks.csv, measurements.csv lengths); item files reach at least as far.
@@ -562,52 +554,50 @@ TEST_CASE("run tracking: othr, --resume after a hard kill finishes identically",
   };
   for (const auto& [what, trials_length, tracks_length, measurements_length] : cuts) {
     DYNAMIC_SECTION("cut: " << what) {
-      write_text(dir.work() / "K" / "trials.csv", trials.substr(0, trials_length));
-      write_text(dir.work() / "K" / "tracks.csv", tracks.substr(0, tracks_length));
-      write_text(dir.work() / "K" / "measurements.csv", measurements.substr(0, measurements_length));
-      write_text(dir.work() / "K" / "meta.json", meta);
+      write_run_files(dir, "K",
+                      {{"trials.csv", trials.substr(0, trials_length)},
+                       {"tracks.csv", tracks.substr(0, tracks_length)},
+                       {"measurements.csv", measurements.substr(0, measurements_length)},
+                       {"meta.json", meta}});
       run_in(dir, "o.ini", "K", 2, /*resume=*/true);
-      check_same(reference, without_time(dir, "K/trials.csv"));
-      CHECK(dir.read("K/tracks.csv") == tracks);
-      CHECK(dir.read("K/measurements.csv") == measurements);
-      check_same(summary, without_time(dir, "K/summary.csv"));
+      check_finished_tracking_run(dir, "K", reference, summary,
+                                  {{"tracks.csv", tracks}, {"measurements.csv", measurements}});
     }
   }
   SECTION("--resume on a finished run changes nothing") {
     run_in(dir, "o.ini", "A", 1, /*resume=*/true);
     CHECK(dir.read("A/tracks.csv") == tracks);
     CHECK(dir.read("A/measurements.csv") == measurements);
-    check_same(reference, without_time(dir, "A/trials.csv"));
+    check_same(reference, without_timing(dir, "A/trials.csv"));
   }
 }
 
 TEST_CASE("run tracking: configuration errors are one clear line", "[run][tracking]") {
   TempDir dir;
-  const auto refused = [&](const std::string& text, const std::vector<std::string>& parts) {
-    check_refused_experiment(dir, text, parts);
-  };
-  refused("scenario = othr\ntrials = 2\nalgorithm = no-such-tracker\n",
-          {"bad.ini", "unknown tracker 'no-such-tracker'", "known: ", "test-fixed-track"});
-  refused("scenario = othr\ntrials = 2\nalgorithm = bp\n", {"'bp' is a single-scan algorithm", "'othr' is tracking"});
-  refused("scenario = othr\ntrials = 2\nalgorithm = jpda-bp\n", {"'jpda-bp' is a multi-scan algorithm"});
-  refused("scenario = grid\ntrials = 2\nalgorithm = test-fixed-track\n", {"'test-fixed-track' is a tracker", "single-scan"});
-  refused("scenario = othr\ntrials = 2\nreference = test-fixed-track\nalgorithm = test-fixed-track\n",
-          {"'reference' lines are not used"});
-  refused("scenario = othr\ntrials = 2\nalgorithm = test-fixed-track:nokey=1\n", {"nokey"});
-  refused("scenario = othr\ntrials = 2\nalgorithm = test-fixed-track\n[sweep]\npd = 0.5, 1.5\n",
-          {"sweep point 1", "pd = 1.5"});
-  refused("scenario = othr\ntrials = 2\nalgorithm = test-fixed-track\n[metrics]\ngate_km = -1\n",
-          {"bad.ini", "[metrics]", "gate_km"});
-  refused("scenario = othr\ntrials = 2\nalgorithm = test-fixed-track\n[metrics]\ngospa_cutoff = 2\n",
-          {"bad.ini", "gospa_cutoff"});
+  check_refused_experiment(dir, "scenario = othr\ntrials = 2\nalgorithm = no-such-tracker\n",
+                           {"bad.ini", "unknown tracker 'no-such-tracker'", "known: ", "test-fixed-track"});
+  check_refused_experiment(dir, "scenario = othr\ntrials = 2\nalgorithm = bp\n",
+                           {"'bp' is a single-scan algorithm", "'othr' is tracking"});
+  check_refused_experiment(dir, "scenario = othr\ntrials = 2\nalgorithm = jpda-bp\n",
+                           {"'jpda-bp' is a multi-scan algorithm"});
+  check_refused_experiment(dir, "scenario = grid\ntrials = 2\nalgorithm = test-fixed-track\n",
+                           {"'test-fixed-track' is a tracker", "single-scan"});
+  check_refused_experiment(dir,
+                           "scenario = othr\ntrials = 2\nreference = test-fixed-track\nalgorithm = test-fixed-track\n",
+                           {"'reference' lines are not used"});
+  check_refused_experiment(dir, "scenario = othr\ntrials = 2\nalgorithm = test-fixed-track:nokey=1\n", {"nokey"});
+  check_refused_experiment(dir, "scenario = othr\ntrials = 2\nalgorithm = test-fixed-track\n[sweep]\npd = 0.5, 1.5\n",
+                           {"sweep point 1", "pd = 1.5"});
+  check_refused_experiment(dir, "scenario = othr\ntrials = 2\nalgorithm = test-fixed-track\n[metrics]\ngate_km = -1\n",
+                           {"bad.ini", "[metrics]", "gate_km"});
+  check_refused_experiment(dir,
+                           "scenario = othr\ntrials = 2\nalgorithm = test-fixed-track\n[metrics]\ngospa_cutoff = 2\n",
+                           {"bad.ini", "gospa_cutoff"});
 }
 
 TEST_CASE("run tracking: from the command line an unknown tracker is one line, status 2", "[run][tracking][cli]") {
   TempDir dir;
-  dir.write("bad.ini", "scenario = othr\ntrials = 2\nalgorithm = no-such-tracker\n[sweep]\npd = 0.75, 0.4\n");
-  const CliResult result = run_dabench(dir, {"run", "bad.ini", "--out", "B"});
-  CHECK(result.status == 2);
-  CHECK(contains(result.err, "bad.ini: unknown tracker 'no-such-tracker' (known: "));
-  CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
-  CHECK_FALSE(dir.exists("B"));
+  check_refused_on_command_line(dir,
+                                "scenario = othr\ntrials = 2\nalgorithm = no-such-tracker\n[sweep]\npd = 0.75, 0.4\n",
+                                {"bad.ini: unknown tracker 'no-such-tracker' (known: "});
 }

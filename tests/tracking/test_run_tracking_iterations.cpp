@@ -14,7 +14,6 @@
 //    least as far as trials.csv) ends with the files of an uninterrupted run.
 #include <catch2/catch.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 #include <tuple>
@@ -129,13 +128,6 @@ class IteratingTracker final : public dabench::Tracker {
 };
 DABENCH_REGISTER_TRACKER(IteratingTracker);
 
-bool is_time_column(const std::string& name) { return name.rfind("tet_s", 0) == 0; }
-
-CsvTable without_time(const TempDir& dir, const std::string& relative) {
-  REQUIRE(dir.exists(relative));
-  return parse_csv(dir.read(relative)).without(is_time_column);
-}
-
 const std::vector<std::string> kIterationMetrics = {"nvt",       "tpd",          "nft",
                                                     "false_tracks", "ghost_tracks", "broken_targets",
                                                     "ttl_scans", "aee_range_km", "aee_bearing_mrad",
@@ -246,7 +238,7 @@ TEST_CASE("run tracking iterations: without the switch, no iterations.csv and no
   CHECK(off.item_files == std::vector<std::string>{"tracks.csv", "measurements.csv"});
   CHECK(dir.exists("on/iterations.csv"));
   CHECK_FALSE(dir.exists("off/iterations.csv"));
-  check_same(without_time(dir, "on/trials.csv"), without_time(dir, "off/trials.csv"));
+  check_same(without_timing(dir, "on/trials.csv"), without_timing(dir, "off/trials.csv"));
   CHECK(dir.read("on/tracks.csv") == dir.read("off/tracks.csv"));
   CHECK(dir.read("on/measurements.csv") == dir.read("off/measurements.csv"));
   CHECK_FALSE(contains(dir.read("off/meta.json"), "record_iterations"));
@@ -264,28 +256,20 @@ TEST_CASE("run tracking iterations: without the switch, no iterations.csv and no
 TEST_CASE("run tracking iterations: the switch outside tracking, or not a boolean, is one clear line",
           "[run][tracking][iterations]") {
   TempDir dir;
-  const auto refused = [&](const std::string& text, const std::vector<std::string>& parts) {
-    check_refused_experiment(dir, text, parts);
-  };
-  refused("scenario = grid\ntrials = 2\nreference = exact\nalgorithm = bp\niterations = true\n",
-          {"bad.ini", "'iterations = true'", "scenario 'grid' is single-scan"});
-  refused("scenario = bearings\ntrials = 2\nalgorithm = jpda-bp\niterations = true\n",
-          {"bad.ini", "'iterations = true'", "multi-scan"});
-  refused("scenario = othr\ntrials = 2\nalgorithm = test-iterating\niterations = sometimes\n",
-          {"bad.ini", "iterations = sometimes", "true or false"});
+  check_refused_experiment(dir, "scenario = grid\ntrials = 2\nreference = exact\nalgorithm = bp\niterations = true\n",
+                           {"bad.ini", "'iterations = true'", "scenario 'grid' is single-scan"});
+  check_refused_experiment(dir, "scenario = bearings\ntrials = 2\nalgorithm = jpda-bp\niterations = true\n",
+                           {"bad.ini", "'iterations = true'", "multi-scan"});
+  check_refused_experiment(dir, "scenario = othr\ntrials = 2\nalgorithm = test-iterating\niterations = sometimes\n",
+                           {"bad.ini", "iterations = sometimes", "true or false"});
   // `iterations = false` is the default, accepted anywhere.
   dir.write("grid.ini", "scenario = grid\ntrials = 1\nreference = exact\nalgorithm = bp\niterations = false\n");
   run_in(dir, "grid.ini", "G", 1);
   CHECK_FALSE(dir.exists("G/iterations.csv"));
 
-  const CliResult result = [&] {
-    dir.write("bad.ini", "scenario = grid\ntrials = 2\nreference = exact\nalgorithm = bp\niterations = true\n");
-    return run_dabench(dir, {"run", "bad.ini", "--out", "B"});
-  }();
-  CHECK(result.status == 2);
-  CHECK(contains(result.err, "bad.ini: 'iterations = true'"));
-  CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
-  CHECK_FALSE(dir.exists("B"));
+  check_refused_on_command_line(dir,
+                                "scenario = grid\ntrials = 2\nreference = exact\nalgorithm = bp\niterations = true\n",
+                                {"bad.ini: 'iterations = true'"});
 }
 
 TEST_CASE("run tracking iterations: othr, 1 and 2 threads give identical files",
@@ -296,7 +280,7 @@ TEST_CASE("run tracking iterations: othr, 1 and 2 threads give identical files",
   run_in(dir, "o.ini", "two", 2);
   const std::string text = dir.read("one/iterations.csv");
   CHECK(text == dir.read("two/iterations.csv"));
-  check_same(without_time(dir, "one/trials.csv"), without_time(dir, "two/trials.csv"));
+  check_same(without_timing(dir, "one/trials.csv"), without_timing(dir, "two/trials.csv"));
   CHECK(dir.read("one/tracks.csv") == dir.read("two/tracks.csv"));
 
   // Rows per item: the draw-dependent tracker 1..3 (iterations 0..2, varying), record=false
@@ -340,8 +324,8 @@ TEST_CASE("run tracking iterations: othr, --resume after a hard kill finishes id
   const std::string measurements = dir.read("A/measurements.csv");
   const std::string iterations = dir.read("A/iterations.csv");
   const std::string meta = dir.read("A/meta.json");
-  const CsvTable reference = without_time(dir, "A/trials.csv");
-  const CsvTable summary = without_time(dir, "A/summary.csv");
+  const CsvTable reference = without_timing(dir, "A/trials.csv");
+  const CsvTable summary = without_timing(dir, "A/summary.csv");
   const auto header = [](const std::string& text) { return text.find('\n') + 1; };
   // (what, lengths of trials.csv, tracks.csv, measurements.csv, iterations.csv); the item
   // files reach at least as far as trials.csv (the writer writes them first).
@@ -362,17 +346,16 @@ TEST_CASE("run tracking iterations: othr, --resume after a hard kill finishes id
   };
   for (const auto& [what, trials_length, tracks_length, measurements_length, iterations_length] : cuts) {
     DYNAMIC_SECTION("cut: " << what) {
-      write_text(dir.work() / "K" / "trials.csv", trials.substr(0, trials_length));
-      write_text(dir.work() / "K" / "tracks.csv", tracks.substr(0, tracks_length));
-      write_text(dir.work() / "K" / "measurements.csv", measurements.substr(0, measurements_length));
-      write_text(dir.work() / "K" / "iterations.csv", iterations.substr(0, iterations_length));
-      write_text(dir.work() / "K" / "meta.json", meta);
+      write_run_files(dir, "K",
+                      {{"trials.csv", trials.substr(0, trials_length)},
+                       {"tracks.csv", tracks.substr(0, tracks_length)},
+                       {"measurements.csv", measurements.substr(0, measurements_length)},
+                       {"iterations.csv", iterations.substr(0, iterations_length)},
+                       {"meta.json", meta}});
       run_in(dir, "o.ini", "K", 2, /*resume=*/true);
-      check_same(reference, without_time(dir, "K/trials.csv"));
-      CHECK(dir.read("K/tracks.csv") == tracks);
-      CHECK(dir.read("K/measurements.csv") == measurements);
-      CHECK(dir.read("K/iterations.csv") == iterations);
-      check_same(summary, without_time(dir, "K/summary.csv"));
+      check_finished_tracking_run(dir, "K", reference, summary,
+                                  {{"tracks.csv", tracks}, {"measurements.csv", measurements},
+                                   {"iterations.csv", iterations}});
     }
   }
   SECTION("--resume on a finished run changes nothing") {
