@@ -396,26 +396,24 @@ RunOutcome run_worker_rank(const RunOptions& options, const MpiTransport& mpi) {
   return outcome;
 }
 
-}  // namespace
+// Under MPI, rank 0 stops every worker rank that read the experiment with `error`; the error
+// to throw on rank 0.
+InputError stop_workers(const MpiTransport* mpi, const std::vector<Hello>& hellos, const std::string& error) {
+  for (std::size_t k = 0; k < hellos.size(); ++k) {
+    if (hellos[k].error.empty()) mpi->send(static_cast<int>(k) + 1, kStartTag, encode(Start{error}));
+  }
+  return InputError(error);
+}
 
-void interrupt_run() { g_interrupted = true; }
-
-RunOutcome run_experiment(const RunOptions& options) {
+// Rank 0's plan, checked against every worker rank's reading of the experiment (their Hellos,
+// into `hellos`), and the units' predicted costs of --costs-from (into `predictions`). An error
+// of rank 0 or of any rank stops every rank.
+RunPlan checked_plan(const RunOptions& options, std::vector<Hello>& hellos, std::vector<double>& predictions) {
   const MpiTransport* mpi = options.transport;
-  if (mpi != nullptr && mpi->rank() != 0) return run_worker_rank(options, *mpi);
-
-  // Under MPI, an error of rank 0 or of any rank reading the experiment stops every rank.
-  std::vector<Hello> hellos;
-  const auto stop_workers = [&](const std::string& error) {
-    for (std::size_t k = 0; k < hellos.size(); ++k) {
-      if (hellos[k].error.empty()) mpi->send(static_cast<int>(k) + 1, kStartTag, encode(Start{error}));
-    }
-    return InputError(error);
-  };
-  std::optional<RunPlan> checked_plan;
+  std::optional<RunPlan> plan;
   std::string error;
   try {
-    checked_plan.emplace(make_run_plan(options));
+    plan.emplace(make_run_plan(options));
   } catch (const InputError& plan_error) {
     if (mpi == nullptr) throw;
     error = plan_error.what();
@@ -425,29 +423,32 @@ RunOutcome run_experiment(const RunOptions& options) {
     const Hello& hello = hellos[k];
     if (!hello.error.empty()) {
       error = fmt::format("rank {} ({}): {}", k + 1, hello.host, hello.error);
-    } else if (hello.fingerprint != checked_plan->fingerprint()) {
+    } else if (hello.fingerprint != plan->fingerprint()) {
       error = fmt::format("rank {} ({}) read another experiment, seed or trials than rank 0 (different files on its host?)",
                           k + 1, hello.host);
     }
   }
-  std::vector<double> predictions;
   if (error.empty() && options.costs_from) {
     try {
-      predictions = unit_predictions(*checked_plan, *options.costs_from);
+      predictions = unit_predictions(*plan, *options.costs_from);
     } catch (const InputError& costs_error) {
       if (mpi == nullptr) throw;
       error = costs_error.what();
     }
   }
-  if (!error.empty()) throw stop_workers(error);
-  const RunPlan& plan = *checked_plan;
+  if (!error.empty()) throw stop_workers(mpi, hellos, error);
+  return std::move(*plan);
+}
 
+// meta.json's record of a run that starts: its command line, start time, hosts and, under MPI,
+// each rank's host and threads.
+RunRecord started_record(const RunOptions& options, const RunPlan& plan, const std::vector<Hello>& hellos) {
   RunRecord record;
   record.command_line = options.command_line;
   record.status = "running";
   record.start_time = utc_now();
   record.hosts = host_name();
-  if (mpi != nullptr) {
+  if (options.transport != nullptr) {
     record.rank_hosts.push_back(record.hosts);
     record.rank_threads.push_back(plan.threads);
     std::set<std::string> seen_hosts = {record.hosts};
@@ -456,8 +457,42 @@ RunOutcome run_experiment(const RunOptions& options) {
       record.rank_threads.push_back(hello.threads);
       if (seen_hosts.insert(hello.host).second) record.hosts += "," + hello.host;
     }
-    record.processes = mpi->size();
+    record.processes = options.transport->size();
   }
+  return record;
+}
+
+// What the writer left: items written, whether the run was cut short, the first failed write
+// (with its file's path).
+RunOutcome written_outcome(const RunPlan& plan, const OrderedWriter& writer) {
+  RunOutcome outcome;
+  if (const auto failure = writer.failure()) {
+    std::vector<std::string> names;  // the writer's files: the item files, then trials.csv
+    for (const ItemFile& file : plan.item_files()) names.push_back(file.name);
+    names.push_back("trials.csv");
+    const std::string path = (std::filesystem::path(plan.output) / names.at(failure->file)).string();
+    outcome.write_error = fmt::format("{}: write failed ({})", path, std::strerror(failure->error));
+  }
+  outcome.items_total = plan.shard_items();
+  outcome.items_written = writer.next() / plan.parts();
+  outcome.interrupted = outcome.items_written < outcome.items_total;
+  outcome.output = plan.output;
+  for (const ItemFile& file : plan.item_files()) outcome.item_files.push_back(file.name);
+  return outcome;
+}
+
+}  // namespace
+
+void interrupt_run() { g_interrupted = true; }
+
+RunOutcome run_experiment(const RunOptions& options) {
+  const MpiTransport* mpi = options.transport;
+  if (mpi != nullptr && mpi->rank() != 0) return run_worker_rank(options, *mpi);
+
+  std::vector<Hello> hellos;
+  std::vector<double> predictions;
+  const RunPlan plan = checked_plan(options, hellos, predictions);
+  RunRecord record = started_record(options, plan, hellos);
   OpenedTrials opened;
   std::vector<std::FILE*> files;
   try {
@@ -465,7 +500,7 @@ RunOutcome run_experiment(const RunOptions& options) {
     for (const ItemFile& file : plan.item_files()) files.push_back(open_item_file(plan, file, opened.items_done, opened.resumed));
   } catch (const InputError& open_error) {
     if (mpi == nullptr) throw;
-    throw stop_workers(open_error.what());
+    throw stop_workers(mpi, hellos, open_error.what());
   }
   files.push_back(opened.file);  // trials.csv last: the item files never hold fewer items
   record.items_done = opened.items_done;
@@ -511,19 +546,7 @@ RunOutcome run_experiment(const RunOptions& options) {
   const double wall_seconds = std::chrono::duration<double>(Clock::now() - wall_start).count();
   for (std::FILE* file : files) std::fclose(file);
 
-  RunOutcome outcome;
-  if (const auto failure = writer.failure()) {
-    std::vector<std::string> names;  // the writer's files: the item files, then trials.csv
-    for (const ItemFile& file : plan.item_files()) names.push_back(file.name);
-    names.push_back("trials.csv");
-    const std::string path = (std::filesystem::path(plan.output) / names.at(failure->file)).string();
-    outcome.write_error = fmt::format("{}: write failed ({})", path, std::strerror(failure->error));
-  }
-  outcome.items_total = total_items;
-  outcome.items_written = writer.next() / parts;
-  outcome.interrupted = outcome.items_written < total_items;
-  outcome.output = plan.output;
-  for (const ItemFile& file : plan.item_files()) outcome.item_files.push_back(file.name);
+  RunOutcome outcome = written_outcome(plan, writer);
   // A failed write of summary.csv or meta.json at the end is reported as a failed row write
   // is: every row stays, and --resume (with space freed) writes them again.
   const auto keep_first_write_error = [&outcome](const auto& write) {
