@@ -43,7 +43,7 @@ from collections import Counter
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fig6_paper as fp  # noqa: E402
-from fig6 import fail, note  # noqa: E402
+from fig6 import note  # noqa: E402
 import bp_paper_rules_bp  # noqa: E402
 import bp_paper_rules_comparators  # noqa: E402
 import bp_paper_rules_convergence  # noqa: E402
@@ -105,18 +105,11 @@ def main(argv=None):
     ap = argparse.ArgumentParser(
         prog=fp.fig6.PROG,
         description="Section V-B claims of Williams & Lau 2014 next to measured numbers (Markdown).")
-    ap.add_argument("--exp1", metavar="CSV", help="summary.csv of experiment 1 (2×3 grid, seven panels)")
-    ap.add_argument("--exp1-extra", metavar="CSV", action="append", default=[],
-                    help="summary.csv of another experiment-1 run over the same points; adds the "
-                         "algorithms --exp1 lacks (repeatable)")
-    ap.add_argument("--exp2", metavar="CSV", help="summary.csv of experiment 2 (n×3 grids)")
-    ap.add_argument("--exp3", metavar="CSV", help="summary.csv of experiment 3 (n×n grids)")
+    fp.add_input_arguments(ap)  # --exp1, --exp1-extra, --exp2, --exp3, as for fig6_paper.py
     ap.add_argument("--out", metavar="FILE", help="write the Markdown here instead of stdout")
     ap.add_argument("--no-trials", action="store_true", help="do not read trials.csv next to the summaries")
     args = ap.parse_args(argv)
-    if not (args.exp1 or args.exp2 or args.exp3):
-        fail("no input: give at least one of --exp1, --exp2, --exp3")
-    data = fp.PaperData(args.exp1, args.exp2, args.exp3, args.exp1_extra)
+    data = fp.read_inputs(args)
     bp_specs = {a for a in data.algorithms() if fp.family_key(a) == "bp"}
     trials = {}
     if not args.no_trials:

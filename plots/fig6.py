@@ -559,7 +559,28 @@ def save_both(fig, out):
     return written
 
 
-def main(argv=None):
+def write_figure(fig, out):
+    """Save fig as PNG and SVG (save_both), print the paths written and close the figure."""
+    for w in save_both(fig, out):
+        print(w)
+    plt.close(fig)
+
+
+def legend_handle(style, ms, lw, mew):
+    """The legend's line for an algorithm's style: its marker ('o' where a lone point got one), of
+    size ms (ms + 1 for '+' and 'x'), filled only for the line-drawn markers."""
+    marker = style["marker"] or ("o" if style.get("lone") else None)
+    filled = marker in ("+", "x", "*", "P", "X")
+    return Line2D([], [], color=style["color"], ls=style["ls"], lw=lw, marker=marker,
+                  ms=ms if marker not in ("+", "x") else ms + 1, mew=mew,
+                  mfc=style["color"] if filled else "none")
+
+
+# ----------------------------------------------------------------------------- the figure (main)
+
+
+def parse_args(argv):
+    """fig6.py's command line."""
     ap = argparse.ArgumentParser(
         prog=PROG, description="Fig. 6: marginal error and computation time versus a sweep.")
     ap.add_argument("summary", help="summary.csv written by `dabench run`")
@@ -575,15 +596,19 @@ def main(argv=None):
     ap.add_argument("--max-panels", type=int, default=24, metavar="N",
                     help="refuse to draw more than N panels (default 24)")
     add_time_stat_argument(ap)
-    args = ap.parse_args(argv)
+    return ap.parse_args(argv)
 
+
+def load_sweep(args):
+    """The rows --where keeps, split into panels along the x axis; notes the columns the figure
+    lacks, exits 2 when nothing is left or there are more than --max-panels panels."""
     summary = Summary(args.summary)
     rows = apply_where(summary.rows, parse_where(args.where, summary))
     if not rows:
         fail(f"no rows of {args.summary} match --where {' '.join(args.where)}")
     x = choose_x(summary, rows, args.x)
     sweep = Sweep(summary, rows, x)
-    mcol, mse = f"{args.metric}_mean", f"{args.metric}_se"
+    mcol = f"{args.metric}_mean"
     if not summary.has(mcol):
         note(f"no column '{mcol}' in {args.summary}; the error rows will be empty")
     elif not any(fnum(r.get(mcol)) > 0 for r in rows):
@@ -596,116 +621,158 @@ def main(argv=None):
         fail(f"{len(sweep.panels)} panels (one per combination of "
              f"{','.join(sweep.panel_keys)}) exceed --max-panels {args.max_panels}; "
              f"select rows with --where or choose another --x")
-    algorithms = sweep.algorithms()
-    styles, legend_order = assign_styles(algorithms)
-    npan = len(sweep.panels)
-    ncols = min(3, npan)
-    nprow = math.ceil(npan / ncols)
-    if npan == 1:
-        figsize = (5.6, 5.0)
-    else:
-        figsize = (3.45 * ncols + 0.5, 3.9 * nprow + 0.4)
-    fig = plt.figure(figsize=figsize, layout="constrained")
-    fig.get_layout_engine().set(h_pad=0.04, w_pad=0.04, hspace=0.02, wspace=0.02)
-    gs = fig.add_gridspec(2 * nprow, ncols)
+    return sweep
 
-    err_axes, time_axes, err_vals, time_vals = [], [], [], []
-    drew_err, drew_time = set(), set()
-    for i in range(npan):
-        pr, c = divmod(i, ncols)
-        ax_e = fig.add_subplot(gs[2 * pr, c])
-        ax_t = fig.add_subplot(gs[2 * pr + 1, c], sharex=ax_e)
-        err_axes.append(ax_e)
-        time_axes.append(ax_t)
-        ev, tv = [], []
-        for spec in legend_order:
-            xs, ys, ses = sweep.series(i, spec, mcol, mse)
-            if xs.size == 0:
-                continue
-            y = plot_series(ax_e, xs, ys, ses, styles[spec])
-            if y.size:
-                drew_err.add(spec)
-                ev.append(y)
-            xs, ys, ses, lo, hi = time_series(lambda col, se_col: sweep.series(i, spec, col, se_col),
-                                              args.time_stat)
-            y = plot_series(ax_t, xs, ys, ses, styles[spec], lo=lo, hi=hi)
-            if y.size:
-                drew_time.add(spec)
-                tv += [y] + band_values(ys, lo, hi)
-        err_vals.append(ev)
-        time_vals.append(tv)
 
-    xs_all = {xv for r in rows for xv in [sweep.x_of(r)] if not math.isnan(xv)}
+class Layout:
+    """The figure and its grid: three panels per figure row, each an error axes above a time axes."""
+
+    def __init__(self, npan):
+        self.npan = npan
+        self.ncols = min(3, npan)
+        nprow = math.ceil(npan / self.ncols)
+        if npan == 1:
+            self.figsize = (5.6, 5.0)
+        else:
+            self.figsize = (3.45 * self.ncols + 0.5, 3.9 * nprow + 0.4)
+        self.fig = plt.figure(figsize=self.figsize, layout="constrained")
+        self.fig.get_layout_engine().set(h_pad=0.04, w_pad=0.04, hspace=0.02, wspace=0.02)
+        self.gs = self.fig.add_gridspec(2 * nprow, self.ncols)
+
+    def panel_axes(self, i):
+        """The error and time axes of panel i (the time axes shares the error axes' x)."""
+        pr, c = divmod(i, self.ncols)
+        ax_e = self.fig.add_subplot(self.gs[2 * pr, c])
+        ax_t = self.fig.add_subplot(self.gs[2 * pr + 1, c], sharex=ax_e)
+        return ax_e, ax_t
+
+
+class Drawn:
+    """What the panels drew: their axes, the y values per panel (for the limits) and the
+    algorithms with an error / a time line somewhere (for the legend)."""
+
+    def __init__(self):
+        self.err_axes, self.time_axes, self.err_vals, self.time_vals = [], [], [], []
+        self.err, self.time = set(), set()
+
+
+def draw_panel(sweep, i, ax_e, ax_t, styles, legend_order, args, drawn):
+    """Panel i's lines: every algorithm's --metric above its time per problem."""
+    mcol, mse = f"{args.metric}_mean", f"{args.metric}_se"
+    ev, tv = [], []
+    for spec in legend_order:
+        xs, ys, ses = sweep.series(i, spec, mcol, mse)
+        if xs.size == 0:
+            continue
+        y = plot_series(ax_e, xs, ys, ses, styles[spec])
+        if y.size:
+            drawn.err.add(spec)
+            ev.append(y)
+        xs, ys, ses, lo, hi = time_series(lambda col, se_col: sweep.series(i, spec, col, se_col),
+                                          args.time_stat)
+        y = plot_series(ax_t, xs, ys, ses, styles[spec], lo=lo, hi=hi)
+        if y.size:
+            drawn.time.add(spec)
+            tv += [y] + band_values(ys, lo, hi)
+    drawn.err_axes.append(ax_e)
+    drawn.time_axes.append(ax_t)
+    drawn.err_vals.append(ev)
+    drawn.time_vals.append(tv)
+
+
+def finish_panel(sweep, i, layout, drawn, lims, single_x, args):
+    """Panel i's log y ranges (lims: the shared ranges' values), x range, grid, labels and title."""
+    ax_e, ax_t = drawn.err_axes[i], drawn.time_axes[i]
+    all_e, all_t = lims
+    lim_e = log_limits(drawn.err_vals[i] if args.independent_y else all_e) if drawn.err_vals[i] else None
+    lim_t = log_limits(drawn.time_vals[i] if args.independent_y else all_t) if drawn.time_vals[i] else None
+    finish_log_axis(ax_e, lim_e)
+    finish_log_axis(ax_t, lim_t)
+    ax_e.margins(x=0.02)
+    if single_x is not None:  # no sweep: one tick at the value instead of a zoomed axis
+        half = abs(single_x) * 0.5 if single_x else 1.0
+        ax_e.set_xlim(single_x - half, single_x + half)
+        ax_t.set_xticks([single_x])
+    ax_e.tick_params(labelbottom=False)
+    for ax in (ax_e, ax_t):
+        ax.grid(True, which="major", color="0.88", lw=0.6)
+        ax.tick_params(labelsize=8.5)
+        ax.set_axisbelow(True)
+    c = i % layout.ncols
+    if c == 0 or args.independent_y:
+        ax_e.set_ylabel(metric_label(args.metric), fontsize=9)
+        ax_t.set_ylabel(time_axis_label(args.time_stat), fontsize=9)
+    if c != 0 and not args.independent_y:
+        if lim_e is not None:
+            ax_e.tick_params(labelleft=False)
+        if lim_t is not None:
+            ax_t.tick_params(labelleft=False)
+    below = i + layout.ncols < layout.npan
+    if not below:
+        ax_t.set_xlabel(sweep.x_label(), fontsize=9)
+    if layout.npan > 1:
+        ax_e.set_title(sweep.panel_title(i), fontsize=9.5)
+
+
+def finish_panels(sweep, layout, drawn, args):
+    """Axis ranges, labels and titles of every panel: one y range per row kind unless
+    --independent-y, one x tick when the rows hold a single x value."""
+    xs_all = {xv for r in sweep.rows for xv in [sweep.x_of(r)] if not math.isnan(xv)}
     single_x = next(iter(xs_all)) if len(xs_all) == 1 else None
-    all_e = [v for ev in err_vals for v in ev]
-    all_t = [v for tv in time_vals for v in tv]
-    for i in range(npan):
-        ax_e, ax_t = err_axes[i], time_axes[i]
-        lim_e = log_limits(err_vals[i] if args.independent_y else all_e) if err_vals[i] else None
-        lim_t = log_limits(time_vals[i] if args.independent_y else all_t) if time_vals[i] else None
-        finish_log_axis(ax_e, lim_e)
-        finish_log_axis(ax_t, lim_t)
-        ax_e.margins(x=0.02)
-        if single_x is not None:  # no sweep: one tick at the value instead of a zoomed axis
-            half = abs(single_x) * 0.5 if single_x else 1.0
-            ax_e.set_xlim(single_x - half, single_x + half)
-            ax_t.set_xticks([single_x])
-        ax_e.tick_params(labelbottom=False)
-        for ax in (ax_e, ax_t):
-            ax.grid(True, which="major", color="0.88", lw=0.6)
-            ax.tick_params(labelsize=8.5)
-            ax.set_axisbelow(True)
-        pr, c = divmod(i, ncols)
-        if c == 0 or args.independent_y:
-            ax_e.set_ylabel(metric_label(args.metric), fontsize=9)
-            ax_t.set_ylabel(time_axis_label(args.time_stat), fontsize=9)
-        if c != 0 and not args.independent_y:
-            if lim_e is not None:
-                ax_e.tick_params(labelleft=False)
-            if lim_t is not None:
-                ax_t.tick_params(labelleft=False)
-        below = i + ncols < npan
-        if not below:
-            ax_t.set_xlabel(sweep.x_label(), fontsize=9)
-        if npan > 1:
-            ax_e.set_title(sweep.panel_title(i), fontsize=9.5)
+    all_e = [v for ev in drawn.err_vals for v in ev]
+    all_t = [v for tv in drawn.time_vals for v in tv]
+    for i in range(layout.npan):
+        finish_panel(sweep, i, layout, drawn, (all_e, all_t), single_x, args)
 
-    if npan == 1:
+
+def add_title(sweep, layout, drawn, args):
+    """--title, else the fixed parameters: the panel's title for one panel, else the figure's."""
+    if layout.npan == 1:
         title = args.title or wrap_parts(sweep.fixed_title(), 60)
         if title:
-            err_axes[0].set_title(title, fontsize=10)
+            drawn.err_axes[0].set_title(title, fontsize=10)
     else:
-        title = args.title or wrap_parts(sweep.fixed_title(), int(22 * ncols))
+        title = args.title or wrap_parts(sweep.fixed_title(), int(22 * layout.ncols))
         if title:
-            fig.suptitle(title, fontsize=10.5)
+            layout.fig.suptitle(title, fontsize=10.5)
 
-    # legend: every algorithm, in family order; ones with no data anywhere are marked
+
+def add_legend(layout, styles, legend_order, drawn, args):
+    """One legend below the panels: every algorithm, in family order; ones with no data anywhere
+    are marked (and noted on stderr, as are ones drawn in the time rows only)."""
     handles, labels = [], []
     for spec in legend_order:
-        st = styles[spec]
-        marker = st["marker"] or ("o" if st.get("lone") else None)
-        filled = marker in ("+", "x", "*", "P", "X")
-        handles.append(Line2D([], [], color=st["color"], ls=st["ls"], lw=st["lw"], marker=marker,
-                              ms=5 if marker not in ("+", "x") else 6, mew=1.0,
-                              mfc=st["color"] if filled else "none"))
+        handles.append(legend_handle(styles[spec], ms=5, lw=styles[spec]["lw"], mew=1.0))
         label = spec
-        if spec not in drew_err and spec not in drew_time:
+        if spec not in drawn.err and spec not in drawn.time:
             label += " (no data)"
             note(f"{spec}: no plottable value (all skipped, missing or zero)")
-        elif spec not in drew_err and drew_err:
+        elif spec not in drawn.err and drawn.err:
             note(f"{spec}: {args.metric} zero or missing everywhere (the reference?); time row only")
         labels.append(label)
     longest = max(len(s) for s in labels) if labels else 10
     col_in = 0.7 + 0.065 * longest
-    ncol_leg = max(1, min(len(labels), int(figsize[0] // col_in)))
+    ncol_leg = max(1, min(len(labels), int(layout.figsize[0] // col_in)))
     if handles:
-        fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol_leg,
-                   frameon=False, fontsize=8.5, handlelength=3.2, columnspacing=1.6)
+        layout.fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol_leg,
+                          frameon=False, fontsize=8.5, handlelength=3.2, columnspacing=1.6)
 
+
+def main(argv=None):
+    """Read, draw every panel, finish the axes, title and legend, write PNG and SVG."""
+    args = parse_args(argv)
+    sweep = load_sweep(args)
+    styles, legend_order = assign_styles(sweep.algorithms())
+    layout = Layout(len(sweep.panels))
+    drawn = Drawn()
+    for i in range(layout.npan):
+        ax_e, ax_t = layout.panel_axes(i)
+        draw_panel(sweep, i, ax_e, ax_t, styles, legend_order, args, drawn)
+    finish_panels(sweep, layout, drawn, args)
+    add_title(sweep, layout, drawn, args)
+    add_legend(layout, styles, legend_order, drawn, args)
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.summary)), "fig6.png")
-    for w in save_both(fig, out):
-        print(w)
-    plt.close(fig)
+    write_figure(layout.fig, out)
     return 0
 
 

@@ -30,7 +30,8 @@ The time axes show the median time per problem with its 5-95 % band by default: 
 machine the mean is dominated by the rare calls another job preempts. `--time-stat mean` draws
 the paper's average time per problem with +-2 standard errors. Axis labels and title say which.
 
-bp_paper_report.py imports the data model (PaperData) from this file.
+bp_paper_report.py imports the data model (PaperData) and the input options (add_input_arguments,
+read_inputs) from this file.
 """
 
 import argparse
@@ -403,32 +404,33 @@ def pretty_label(spec):
     return label
 
 
-# ----------------------------------------------------------------------------- figure
-
-TIME_UNITS = {"us": (1.0, "µs"), "ms": (1e3, "ms"), "s": (1e6, "s")}
+# ----------------------------------------------------------------------------- command line
 
 
-def choose_time_unit(data, requested, time_col):
-    if requested != "auto":
-        return requested
-    vals = [fnum(r.get(time_col)) for p in data.panels for r in p.rows]
-    vals = [v for v in vals if v > 0]
-    if not vals:
-        return "us"
-    med = float(np.median(vals))
-    return "us" if med < 1e3 else ("ms" if med < 1e6 else "s")
-
-
-def main(argv=None):
-    ap = argparse.ArgumentParser(
-        prog=fig6.PROG,
-        description="The complete Fig. 6 of Williams & Lau 2014 from the runs of its three experiments.")
+def add_input_arguments(ap):
+    """--exp1, --exp1-extra, --exp2, --exp3: the runs of the three experiments (the options of
+    this script and of bp_paper_report.py); read them with read_inputs."""
     ap.add_argument("--exp1", metavar="CSV", help="summary.csv of experiment 1 (2×3 grid, seven panels)")
     ap.add_argument("--exp1-extra", metavar="CSV", action="append", default=[],
                     help="summary.csv of another experiment-1 run over the same points; adds the "
                          "algorithms --exp1 lacks (repeatable)")
     ap.add_argument("--exp2", metavar="CSV", help="summary.csv of experiment 2 (n×3 grids)")
     ap.add_argument("--exp3", metavar="CSV", help="summary.csv of experiment 3 (n×n grids)")
+
+
+def read_inputs(args):
+    """PaperData of the runs add_input_arguments' options name; exit 2 when none is given."""
+    if not (args.exp1 or args.exp2 or args.exp3):
+        fail("no input: give at least one of --exp1, --exp2, --exp3")
+    return PaperData(args.exp1, args.exp2, args.exp3, args.exp1_extra)
+
+
+def parse_args(argv):
+    """fig6_paper.py's command line."""
+    ap = argparse.ArgumentParser(
+        prog=fig6.PROG,
+        description="The complete Fig. 6 of Williams & Lau 2014 from the runs of its three experiments.")
+    add_input_arguments(ap)
     ap.add_argument("--out", help="output PNG (an SVG is written next to it; default: fig6_paper.png "
                                   "next to the first input)")
     ap.add_argument("--metric", default="max_error", help="error metric of the error rows (default max_error)")
@@ -444,144 +446,204 @@ def main(argv=None):
     fig6.add_time_stat_argument(ap)
     ap.add_argument("--no-bands", action="store_true", help="no bands (±2 standard errors, time percentiles)")
     ap.add_argument("--title", help="figure title")
-    args = ap.parse_args(argv)
+    return ap.parse_args(argv)
 
-    if not (args.exp1 or args.exp2 or args.exp3):
-        fail("no input: give at least one of --exp1, --exp2, --exp3")
-    data = PaperData(args.exp1, args.exp2, args.exp3, args.exp1_extra)
+
+def load_data(args):
+    """The panels of the inputs; exits 2 when there is none, notes inputs that lack a column drawn."""
+    data = read_inputs(args)
     if not data.panels:
         fail("no Fig. 6 panel found in the inputs")
-    mcol, mse = f"{args.metric}_mean", f"{args.metric}_se"
-    for exp, s in data.summaries.items():
+    mcol = f"{args.metric}_mean"
+    for s in data.summaries.values():
         if not s.has(mcol):
             note(f"{s.path}: no column '{mcol}'; its error axes will be empty")
         if not s.has(f"time_us_{args.time_stat}"):
             note(f"{s.path}: no column 'time_us_{args.time_stat}'; its time axes will be empty")
+    return data
 
-    algorithms = data.algorithms()
-    styles, legend_order = paper_styles(algorithms)
-    unit = choose_time_unit(data, args.time_unit, f"time_us_{args.time_stat}")
-    scale, unit_label = TIME_UNITS[unit]
 
-    # grid of the panels actually present: drop empty panel rows / columns
-    prows = sorted({p.pos[0] for p in data.panels})
-    pcols = sorted({p.pos[1] for p in data.panels})
-    nr, nc = len(prows), len(pcols)
-    if nr * nc == 1:
-        figsize = (5.6, 5.2)
-    else:
-        figsize = (4.45 * nc + 0.6, 4.6 * nr + 1.2)
-    fig = plt.figure(figsize=figsize, layout="constrained")
-    fig.get_layout_engine().set(h_pad=0.05, w_pad=0.05, hspace=0.035, wspace=0.03)
-    outer = fig.add_gridspec(nr, nc)
+# ----------------------------------------------------------------------------- figure
 
-    drew_err, drew_time = set(), set()
-    axes = []  # (panel, ax_err, ax_time, err values, time values)
-    for p in data.panels:
-        cell = outer[prows.index(p.pos[0]), pcols.index(p.pos[1])].subgridspec(2, 1, hspace=0.0)
-        ax_e = fig.add_subplot(cell[0])
-        ax_t = fig.add_subplot(cell[1], sharex=ax_e)
-        ev, tv = [], []
-        for spec in legend_order:
-            if spec not in p.algorithms:
-                continue
-            st = styles[spec]
-            band = not args.no_bands
-            if args.show_reference_error or not is_reference_family(spec):
-                xs, ys, ses = p.series(spec, mcol, mse)
-                y = fig6.plot_series(ax_e, xs, ys, ses, st, band=band)
-                if y.size:
-                    drew_err.add(spec)
-                    ev.append(y)
-            xs, ys, ses, lo, hi = fig6.time_series(lambda col, se_col: p.series(spec, col, se_col), args.time_stat)
-            if lo is not None:
-                lo, hi = lo / scale, hi / scale
-            y = fig6.plot_series(ax_t, xs, ys / scale, ses / scale, st, band=band, lo=lo, hi=hi)
+TIME_UNITS = {"us": (1.0, "µs"), "ms": (1e3, "ms"), "s": (1e6, "s")}
+
+
+def choose_time_unit(data, requested, time_col):
+    """The time rows' unit: --time-unit, else (auto) by the median of the times drawn."""
+    if requested != "auto":
+        return requested
+    vals = [fnum(r.get(time_col)) for p in data.panels for r in p.rows]
+    vals = [v for v in vals if v > 0]
+    if not vals:
+        return "us"
+    med = float(np.median(vals))
+    return "us" if med < 1e3 else ("ms" if med < 1e6 else "s")
+
+
+
+class Layout:
+    """The figure and its grid of the panels present: panel rows and columns left empty are dropped;
+    each panel's cell holds an error axes above a time axes."""
+
+    def __init__(self, data):
+        self.prows = sorted({p.pos[0] for p in data.panels})
+        self.pcols = sorted({p.pos[1] for p in data.panels})
+        self.nr, self.nc = len(self.prows), len(self.pcols)
+        if self.nr * self.nc == 1:
+            self.figsize = (5.6, 5.2)
+        else:
+            self.figsize = (4.45 * self.nc + 0.6, 4.6 * self.nr + 1.2)
+        self.fig = plt.figure(figsize=self.figsize, layout="constrained")
+        self.fig.get_layout_engine().set(h_pad=0.05, w_pad=0.05, hspace=0.035, wspace=0.03)
+        self.outer = self.fig.add_gridspec(self.nr, self.nc)
+
+    def panel_axes(self, p):
+        """The error and time axes of panel p (the time axes shares the error axes' x)."""
+        cell = self.outer[self.prows.index(p.pos[0]), self.pcols.index(p.pos[1])].subgridspec(2, 1, hspace=0.0)
+        ax_e = self.fig.add_subplot(cell[0])
+        ax_t = self.fig.add_subplot(cell[1], sharex=ax_e)
+        return ax_e, ax_t
+
+
+class Drawn:
+    """What the panels drew: per panel (panel, error axes, time axes, error values, time values),
+    and the algorithms with an error / a time line somewhere (for the legend)."""
+
+    def __init__(self):
+        self.axes = []
+        self.err, self.time = set(), set()
+
+
+def draw_panel(p, ax_e, ax_t, styles, legend_order, args, scale, drawn):
+    """Panel p's lines: every algorithm's --metric (not the references' unless
+    --show-reference-error) above its time per problem in the time unit (scale: µs per unit)."""
+    mcol, mse = f"{args.metric}_mean", f"{args.metric}_se"
+    ev, tv = [], []
+    for spec in legend_order:
+        if spec not in p.algorithms:
+            continue
+        st = styles[spec]
+        band = not args.no_bands
+        if args.show_reference_error or not is_reference_family(spec):
+            xs, ys, ses = p.series(spec, mcol, mse)
+            y = fig6.plot_series(ax_e, xs, ys, ses, st, band=band)
             if y.size:
-                drew_time.add(spec)
-                tv += [y] + (fig6.band_values(ys, lo, hi) if band else [])
-        axes.append((p, ax_e, ax_t, ev, tv))
+                drawn.err.add(spec)
+                ev.append(y)
+        xs, ys, ses, lo, hi = fig6.time_series(lambda col, se_col: p.series(spec, col, se_col), args.time_stat)
+        if lo is not None:
+            lo, hi = lo / scale, hi / scale
+        y = fig6.plot_series(ax_t, xs, ys / scale, ses / scale, st, band=band, lo=lo, hi=hi)
+        if y.size:
+            drawn.time.add(spec)
+            tv += [y] + (fig6.band_values(ys, lo, hi) if band else [])
+    drawn.axes.append((p, ax_e, ax_t, ev, tv))
 
-    all_e = [v for a in axes for v in a[3]]
-    all_t = [v for a in axes for v in a[4]]
+
+def set_x_range(p, ax_e, ax_t):
+    """x range of panel p's axes: its x values with 2 % padding, or one tick at a single value."""
+    xs = [p.x_of(r) for r in p.rows if not math.isnan(p.x_of(r))]
+    if xs:
+        lo, hi = min(xs), max(xs)
+        if hi > lo:
+            pad = 0.02 * (hi - lo)
+            ax_e.set_xlim(lo - pad, hi + pad)
+        else:
+            half = abs(lo) * 0.5 if lo else 1.0
+            ax_e.set_xlim(lo - half, lo + half)
+            ax_t.set_xticks([lo])
+
+
+def finish_panel(p, ax_e, ax_t, lim_e, lim_t, y_labels):
+    """Panel p's y ranges (None: no data), x range, grid, grey background (experiments 2 and 3),
+    labels (y_labels: (error, time) label, or None) and title."""
+    fig6.finish_log_axis(ax_e, lim_e)
+    fig6.finish_log_axis(ax_t, lim_t)
+    set_x_range(p, ax_e, ax_t)
+    ax_e.tick_params(labelbottom=False)
+    for ax in (ax_e, ax_t):
+        ax.grid(True, which="major", color="0.82" if p.shaded else "0.88", lw=0.6)
+        ax.tick_params(labelsize=9)
+        ax.set_axisbelow(True)
+        if p.shaded:
+            ax.set_facecolor("0.92")
+    if y_labels is not None:
+        ax_e.set_ylabel(y_labels[0], fontsize=9.5)
+        ax_t.set_ylabel(y_labels[1], fontsize=9.5)
+    ax_t.set_xlabel(p.x_label, fontsize=9.5, labelpad=1.5)
+    ax_e.set_title(p.title, fontsize=11, pad=4)
+
+
+def finish_panels(drawn, args, unit_label):
+    """Every panel's axes: one y range for all error and one for all time axes unless
+    --independent-y, the error axes cut at --error-floor; y labels on each figure row's leftmost
+    panel (on every panel with --independent-y)."""
+    all_e = [v for a in drawn.axes for v in a[3]]
+    all_t = [v for a in drawn.axes for v in a[4]]
     leftmost = {}
-    for p, *_ in axes:
+    for p, *_ in drawn.axes:
         leftmost[p.pos[0]] = min(leftmost.get(p.pos[0], 9), p.pos[1])
-    for p, ax_e, ax_t, ev, tv in axes:
+    y_labels = (fig6.metric_label(args.metric), fig6.time_axis_label(args.time_stat, unit_label))
+    for p, ax_e, ax_t, ev, tv in drawn.axes:
         lim_e = fig6.log_limits(ev if args.independent_y else all_e) if ev else None
         if lim_e is not None and args.error_floor > 0 and lim_e[0] < args.error_floor:
             lim_e = (args.error_floor, max(lim_e[1], args.error_floor * 10))
         lim_t = fig6.log_limits(tv if args.independent_y else all_t) if tv else None
-        fig6.finish_log_axis(ax_e, lim_e)
-        fig6.finish_log_axis(ax_t, lim_t)
-        xs = [p.x_of(r) for r in p.rows if not math.isnan(p.x_of(r))]
-        if xs:
-            lo, hi = min(xs), max(xs)
-            if hi > lo:
-                pad = 0.02 * (hi - lo)
-                ax_e.set_xlim(lo - pad, hi + pad)
-            else:
-                half = abs(lo) * 0.5 if lo else 1.0
-                ax_e.set_xlim(lo - half, lo + half)
-                ax_t.set_xticks([lo])
-        ax_e.tick_params(labelbottom=False)
-        for ax in (ax_e, ax_t):
-            ax.grid(True, which="major", color="0.82" if p.shaded else "0.88", lw=0.6)
-            ax.tick_params(labelsize=9)
-            ax.set_axisbelow(True)
-            if p.shaded:
-                ax.set_facecolor("0.92")
-        if p.pos[1] == leftmost[p.pos[0]] or args.independent_y:
-            ax_e.set_ylabel(fig6.metric_label(args.metric), fontsize=9.5)
-            ax_t.set_ylabel(fig6.time_axis_label(args.time_stat, unit_label), fontsize=9.5)
-        ax_t.set_xlabel(p.x_label, fontsize=9.5, labelpad=1.5)
-        ax_e.set_title(p.title, fontsize=11, pad=4)
+        labelled = p.pos[1] == leftmost[p.pos[0]] or args.independent_y
+        finish_panel(p, ax_e, ax_t, lim_e, lim_t, y_labels if labelled else None)
 
+
+def figure_title(data, args, nc):
+    """--title, else the figure's title: what the rows show, then which panels are which (one
+    clause per line, wrapped, when the figure has fewer than three panel columns)."""
     if args.title is not None:
-        title = args.title
-    else:
-        title = ("Fig. 6 (Williams & Lau 2014): average max marginal error and "
-                 if args.metric == "max_error" else
-                 f"Fig. 6 (Williams & Lau 2014): {fig6.metric_label(args.metric)} and ") + \
-                ("average time per problem (±2 SE)" if args.time_stat == "mean" else
-                 "median time per problem (5–95\u00a0% band)")
-        sub = []
-        if any(p.exp == 1 for p in data.panels):
-            sub.append("white: six targets (2×3 grid) vs spacing, baseline $P_d$ = 0.6, "
-                       "$\\lambda_{fa}$ = 0.01, $r$ = 1, one parameter changed per panel")
-        if any(p.shaded for p in data.panels):
-            sub.append("grey: number of targets varied at the baseline parameters")
-        if sub:
-            title += "\n" + "; ".join(sub)
-        if nc < 3:  # narrow figure: one clause per line, wrapped
-            width = 48 if nc == 1 else 80
-            lines = []
-            for part in title.replace("; ", "\n").split("\n"):
-                lines += textwrap.wrap(part, width) or [""]
-            title = "\n".join(lines)
-    if title:
-        fig.suptitle(title, fontsize=12)
+        return args.title
+    title = ("Fig. 6 (Williams & Lau 2014): average max marginal error and "
+             if args.metric == "max_error" else
+             f"Fig. 6 (Williams & Lau 2014): {fig6.metric_label(args.metric)} and ") + \
+            ("average time per problem (±2 SE)" if args.time_stat == "mean" else
+             "median time per problem (5–95\u00a0% band)")
+    sub = []
+    if any(p.exp == 1 for p in data.panels):
+        sub.append("white: six targets (2×3 grid) vs spacing, baseline $P_d$ = 0.6, "
+                   "$\\lambda_{fa}$ = 0.01, $r$ = 1, one parameter changed per panel")
+    if any(p.shaded for p in data.panels):
+        sub.append("grey: number of targets varied at the baseline parameters")
+    if sub:
+        title += "\n" + "; ".join(sub)
+    if nc < 3:  # narrow figure: one clause per line, wrapped
+        width = 48 if nc == 1 else 80
+        lines = []
+        for part in title.replace("; ", "\n").split("\n"):
+            lines += textwrap.wrap(part, width) or [""]
+        title = "\n".join(lines)
+    return title
 
+
+def legend_entries(data, styles, legend_order, drawn, metric):
+    """Legend handles and labels in the caption's order: the paper's names, the references marked,
+    "(no data)" for algorithms drawn nowhere (noted on stderr, as are ones in the time rows only)."""
     handles, labels = [], []
     for spec in legend_order:
         st = styles[spec]
-        marker = st["marker"] or ("o" if st.get("lone") else None)
-        filled = marker in ("+", "x", "*", "P", "X")
-        handles.append(Line2D([], [], color=st["color"], ls=st["ls"], lw=st["lw"] + 0.2, marker=marker,
-                              ms=6 if marker not in ("+", "x") else 7, mew=1.1,
-                              mfc=st["color"] if filled else "none"))
+        handles.append(fig6.legend_handle(st, ms=6, lw=st["lw"] + 0.2, mew=1.1))
         label = pretty_label(spec)
         label += data.reference_note(spec)
-        if spec not in drew_err and spec not in drew_time:
+        if spec not in drawn.err and spec not in drawn.time:
             label += " (no data)"
             note(f"{spec}: no plottable value (all skipped, missing or zero)")
-        elif spec not in drew_err and not data.is_reference(spec) and drew_err:
-            note(f"{spec}: {args.metric} zero or missing everywhere; time rows only")
+        elif spec not in drawn.err and not data.is_reference(spec) and drawn.err:
+            note(f"{spec}: {metric} zero or missing everywhere; time rows only")
         labels.append(label)
     if len(set(labels)) < len(labels):  # two SPECs with one pretty label: use the SPECs
         labels = [lab if labels.count(lab) == 1 else f"{lab} [{spec}]" for lab, spec in zip(labels, legend_order)]
-    # one legend column per family group (references, BP, LMIPDA, BAA | MCMCDA | CD | JT | others),
-    # padded with blank entries, as long as the columns fit the width; else fill column by column
+    return handles, labels
+
+
+def legend_columns(handles, labels, legend_order, width):
+    """One legend column per family group (references, BP, LMIPDA, BAA | MCMCDA | CD | JT | others),
+    padded with blank entries, as long as the columns fit the figure width (inches); else the
+    entries fill column by column. Returns the handles, labels and number of columns."""
     group_of = {"exact": 0, "ehm": 0, "bp": 0, "lmipda": 0, "baa": 0, "mcmcda": 1, "cd": 2, "jt": 3}
     groups = {}
     for h, lab, spec in zip(handles, labels, legend_order):
@@ -589,7 +651,7 @@ def main(argv=None):
     groups = [groups[k] for k in sorted(groups)]
     longest = max(len(re.sub(r"[$\\{}^_]", "", s)) for s in labels) if labels else 10
     col_in = 0.75 + 0.065 * longest
-    fit = max(1, int(figsize[0] // col_in))
+    fit = max(1, int(width // col_in))
     if 1 < len(groups) <= fit:
         depth = max(len(g) for g in groups)
         blank = Line2D([], [], lw=0, marker=None)
@@ -598,21 +660,45 @@ def main(argv=None):
             g = g + [(blank, "")] * (depth - len(g))
             handles += [h for h, _ in g]
             labels += [lab for _, lab in g]
-        ncol_leg = len(groups)
-    else:
-        ncol_leg = max(1, min(len(labels), fit))
-    if handles:
-        fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol_leg,
-                   frameon=False, fontsize=10, handlelength=3.2, columnspacing=2.0)
+        return handles, labels, len(groups)
+    return handles, labels, max(1, min(len(labels), fit))
 
+
+def add_legend(layout, data, styles, legend_order, drawn, args):
+    """One legend for the whole figure, below the panels."""
+    handles, labels = legend_entries(data, styles, legend_order, drawn, args.metric)
+    handles, labels, ncol_leg = legend_columns(handles, labels, legend_order, layout.figsize[0])
+    if handles:
+        layout.fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol_leg,
+                          frameon=False, fontsize=10, handlelength=3.2, columnspacing=2.0)
+
+
+def output_path(args):
+    """--out, else fig6_paper.png next to the first input."""
     if args.out:
-        out = args.out
-    else:
-        first = next(p for p in (args.exp1, args.exp2, args.exp3) if p)
-        out = os.path.join(os.path.dirname(os.path.abspath(first)), "fig6_paper.png")
-    for w in fig6.save_both(fig, out):
-        print(w)
-    plt.close(fig)
+        return args.out
+    first = next(p for p in (args.exp1, args.exp2, args.exp3) if p)
+    return os.path.join(os.path.dirname(os.path.abspath(first)), "fig6_paper.png")
+
+
+def main(argv=None):
+    """Read the runs, draw every panel, finish the axes, title and legend, write PNG and SVG."""
+    args = parse_args(argv)
+    data = load_data(args)
+    styles, legend_order = paper_styles(data.algorithms())
+    unit = choose_time_unit(data, args.time_unit, f"time_us_{args.time_stat}")
+    scale, unit_label = TIME_UNITS[unit]
+    layout = Layout(data)
+    drawn = Drawn()
+    for p in data.panels:
+        ax_e, ax_t = layout.panel_axes(p)
+        draw_panel(p, ax_e, ax_t, styles, legend_order, args, scale, drawn)
+    finish_panels(drawn, args, unit_label)
+    title = figure_title(data, args, layout.nc)
+    if title:
+        layout.fig.suptitle(title, fontsize=12)
+    add_legend(layout, data, styles, legend_order, drawn, args)
+    fig6.write_figure(layout.fig, output_path(args))
     return 0
 
 

@@ -118,9 +118,7 @@ def main(argv=None):
     ax.legend(fontsize=9, frameon=False, loc="best")
 
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.summary)), "fig7.png")
-    for w in fig6.save_both(fig, out):
-        print(w)
-    plt.close(fig)
+    fig6.write_figure(fig, out)
     return 0
 
 
