@@ -24,7 +24,7 @@ def main(argv=None):
     known = {n: render.load(n) for n in render.STUDY_NAMES if n == args.name}
     s = known.get(args.name)
     if s is None or s.digest is None:
-        with_digests = [n for n, k in known.items() if k.digest]
+        with_digests = [n for n in render.STUDY_NAMES if render.load(n).digest]
         print(f"digest.py: {args.name!r} has no digests (studies with digests: {', '.join(with_digests)})",
               file=sys.stderr)
         return 2

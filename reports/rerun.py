@@ -26,7 +26,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     known = {n: render.load(n) for n in render.STUDY_NAMES if n == args.name}
     if args.name not in known:
-        print(f"rerun.py: unknown study {args.name!r} (known: {', '.join(known)})", file=sys.stderr)
+        print(f"rerun.py: unknown study {args.name!r} (known: {', '.join(render.STUDY_NAMES)})", file=sys.stderr)
         return 2
     s = known[args.name]
     runs = [] if args.steps_only else [r for r in s.runs if not args.only or r.folder in args.only]

@@ -2,7 +2,6 @@
 the Sec. V-B verdict it feeds, the wall-time target follows meta.json, the kernel targets follow
 bench.json ("not run" without it), and the trials digest counts what trials.csv holds."""
 
-import csv
 import json
 import os
 import shutil
@@ -12,22 +11,12 @@ import unittest
 from reports import render
 from reports.core import study, verdicts
 from reports.studies import bp_paper
+from reports.tests.tampering import rewrite_csv
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DATA = (".csv", ".json")  # what the checks read: summaries, digests, meta.json, bench.json
 
 
-def rewrite_csv(path, change):
-    """Rewrite a CSV with change(row) applied to each row (a dict of strings)."""
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.DictReader(f)
-        header, rows = reader.fieldnames, list(reader)
-    for row in rows:
-        change(row)
-    with open(path, "w", newline="", encoding="utf-8") as f:
-        writer = csv.DictWriter(f, header, lineterminator="\n")
-        writer.writeheader()
-        writer.writerows(rows)
 
 
 def pd09_bp_far_off(row):

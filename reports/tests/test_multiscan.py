@@ -15,6 +15,7 @@ import numpy as np
 
 from reports.core import stats
 from reports.studies import multiscan
+from reports.tests.tampering import rewrite_csv
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 RENDER = os.path.join(REPO, "reports", "render.py")
@@ -37,17 +38,6 @@ class PairedResamples(unittest.TestCase):
         self.assertAlmostEqual(ours[1], interval[1], places=14)
 
 
-def rewrite_csv(path, change):
-    """Rewrite a CSV with change(row) applied to each row (a dict of strings)."""
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.DictReader(f)
-        header, rows = reader.fieldnames, list(reader)
-    for row in rows:
-        change(row)
-    with open(path, "w", newline="", encoding="utf-8") as f:
-        writer = csv.DictWriter(f, header, lineterminator="\n")
-        writer.writeheader()
-        writer.writerows(rows)
 
 
 class CopyOfTheData(unittest.TestCase):

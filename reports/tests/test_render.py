@@ -88,5 +88,23 @@ class CopyOfTheData(unittest.TestCase):
         self.assertIn(stale, result.stderr)
 
 
+class UnknownStudy(unittest.TestCase):
+    """rerun.py and digest.py name the studies they know when given one they do not."""
+
+    def run_script(self, script, *args):
+        path = os.path.join(REPO, "reports", script)
+        return subprocess.run([sys.executable, path, *args], capture_output=True, text=True)
+
+    def test_rerun_lists_every_study(self):
+        result = self.run_script("rerun.py", "nosuch", "--dry-run")
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("unknown study 'nosuch' (known: bp-paper, multiscan, jdtvb, tbd, leaderboard, readme)", result.stderr)
+
+    def test_digest_lists_the_studies_with_digests(self):
+        result = self.run_script("digest.py", "readme")
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("(studies with digests: bp-paper, tbd, leaderboard)", result.stderr)
+
+
 if __name__ == "__main__":
     unittest.main()

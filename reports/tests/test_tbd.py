@@ -13,6 +13,7 @@ import unittest
 from reports import render
 from reports.core import study as study_core, verdicts
 from reports.studies import tbd, tbd_toy
+from reports.tests.tampering import rewrite_csv
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 HAS_DIGESTS = all(os.path.exists(os.path.join(REPO, f, "runs.csv")) for f, _ in tbd.DIGESTS) and \
@@ -23,17 +24,6 @@ HAS_DIGESTS = all(os.path.exists(os.path.join(REPO, f, "runs.csv")) for f, _ in 
 LARGE = ("steps.csv", "trials.csv", "frames.csv", "estimates.csv", "beliefs.csv", "*.png", "*.svg")
 
 
-def edit_csv(path, change):
-    """Rewrite a CSV with change(row) applied to every row (a dict; edit it in place)."""
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.DictReader(f)
-        header, rows = reader.fieldnames, list(reader)
-    for row in rows:
-        change(row)
-    with open(path, "w", newline="", encoding="utf-8") as f:
-        w = csv.DictWriter(f, header, lineterminator="\n")
-        w.writeheader()
-        w.writerows(rows)
 
 
 class Copy(unittest.TestCase):
@@ -71,7 +61,7 @@ class TamperedDigests(Copy):
             def change(row):  # point 0: reading D1, the default
                 if row["algorithm"] == tbd_toy.EXACT and row["label"] == tbd_toy.PO1 and row["point"] == "0":
                     row["mean_x"], row["mean_y"] = str(float(peak[0]) + offset), str(float(peak[1]) + offset)
-            edit_csv(self.file(tbd.TOY, "beliefs-summary.csv"), change)
+            rewrite_csv(self.file(tbd.TOY, "beliefs-summary.csv"), change)
 
         move(0.0)
         self.assertEqual(self.verdicts()["T3"], verdicts.WITHIN_ERROR)
@@ -86,7 +76,7 @@ class TamperedDigests(Copy):
                 if row["point"] == "0" and {row["a"], row["b"]} == {tbd.IEMB, tbd.BP1}:
                     sign = 1.0 if row["a"] == tbd.IEMB else -1.0
                     row["gospa_diff_mean"], row["gospa_diff_se"] = str(sign * iemb_minus_bp(int(row["k"]))), "0.01"
-            edit_csv(self.file(tbd.GOSPA, "steps-paired.csv"), change)
+            rewrite_csv(self.file(tbd.GOSPA, "steps-paired.csv"), change)
 
         set_steps(lambda k: 1.0)
         self.assertEqual(self.verdicts()["G2"], verdicts.AGREES)
@@ -104,7 +94,7 @@ class TamperedDigests(Copy):
             def change(row):
                 if row["algorithm"] == tbd.MB:
                     row["gospa"] = str(float(row["gospa"]) + shift)
-            edit_csv(path, change)
+            rewrite_csv(path, change)
             self.assertEqual(self.verdicts()["G1"], expected)
 
     def test_runtime_ratio_of_the_paper(self):
@@ -119,7 +109,7 @@ class TamperedDigests(Copy):
             def change(row):
                 if row["algorithm"] == tbd.BP2:
                     row["step_time_us"] = str(ratio * l1[(row["point"], row["trial"])])
-            edit_csv(path, change)
+            rewrite_csv(path, change)
             self.assertEqual(self.verdicts()["R2"], expected)
 
 
@@ -155,7 +145,7 @@ class TamperedSummaryAndBenchmark(Copy):
         def change(row):
             if row["algorithm"] == tbd.IEMB:
                 row["gospa_mean"] = "9.87654"
-        edit_csv(self.file(tbd.GOSPA, "summary.csv"), change)
+        rewrite_csv(self.file(tbd.GOSPA, "summary.csv"), change)
         after, _ = render.build(study, self.root)
         self.assertNotIn("9.87", before)
         self.assertIn("9.87", after)
