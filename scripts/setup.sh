@@ -5,7 +5,7 @@
 # Idempotent; run as root (or with sudo available). Nothing else is downloaded.
 set -euo pipefail
 packages=(
-  g++ cmake make pkg-config
+  g++ cmake make ninja-build ccache pkg-config
   libeigen3-dev libboost-program-options-dev libfmt-dev
   catch2 libbenchmark-dev
   libopenmpi-dev openmpi-bin

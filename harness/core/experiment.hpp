@@ -6,7 +6,7 @@
 //   scenario = grid
 //   trials = 200                      # Monte Carlo trials per sweep point
 //   seed = 1                          # master seed (uint64)
-//   output = results/quickstart       # output folder (relative to the working directory)
+//   output = out/quickstart           # output folder (relative to the working directory)
 //   reference = exact                 # SPEC the errors are measured against; more reference
 //   reference = mcmcda:samples=1e7    #   lines are fallbacks, run only when the ones before
 //                                     #   were skipped (e.g. a work limit)

@@ -68,20 +68,27 @@ def read_targets(root, folder):
     return out
 
 
-def trial_resamples(trial, columns, statistic):
-    """statistic(columns) on the data, and on stats.RESAMPLES resamples of whole trials.
-
-    The draws are those of core.stats.cluster_bootstrap (same seed; groups = the trials in
-    increasing order), made once for a vector of statistics of many methods, so that every method
-    sees the same resampled trials (paired) and a render stays fast."""
+def resample_weights(trial, resamples=stats.RESAMPLES):
+    """How often each row enters each resample of whole trials (resamples × rows): the draws of
+    core.stats.cluster_bootstrap (same seed; groups = the trials in increasing order)."""
     trials, group = np.unique(trial, return_inverse=True)
     n = len(trials)
     rng = np.random.Generator(np.random.PCG64(stats.SEED))
+    weights = np.empty((resamples, len(trial)), dtype=np.int64)
+    for r in range(resamples):
+        weights[r] = np.bincount(rng.integers(0, n, n), minlength=n)[group]
+    return weights
+
+
+def trial_resamples(trial, columns, statistic):
+    """statistic(columns) on the data, and on stats.RESAMPLES resamples of whole trials (the rows
+    of each resample, repeated as resample_weights says), made once for a vector of statistics of
+    many methods, so that every method sees the same resampled trials (paired)."""
     point = np.asarray(statistic(columns), dtype=float)
-    draws = np.empty((stats.RESAMPLES,) + point.shape)
-    for r in range(stats.RESAMPLES):
-        counts = np.bincount(rng.integers(0, n, n), minlength=n)
-        draws[r] = statistic(np.repeat(columns, counts[group], axis=0))
+    weights = resample_weights(trial)
+    draws = np.empty((len(weights),) + point.shape)
+    for r, w in enumerate(weights):
+        draws[r] = statistic(np.repeat(columns, w, axis=0))
     return point, draws
 
 
@@ -96,6 +103,65 @@ def target_statistics(columns):
                      np.percentile(likelihood, 80, axis=0)])
 
 
+def _lerp(a, b, t):
+    """numpy's percentile interpolation, operation for operation (numpy.lib.function_base._lerp)."""
+    diff = b - a
+    return np.where(t >= 0.5, b - diff * (1 - t), a + diff * t)
+
+
+def _weighted_order_statistics(column, row_weights, ranks):
+    """The ranks[r, k]-th smallest (0-based) value of column in resample r, where row i appears
+    row_weights[i, r] times (resamples × k); NaN where a NaN enters the resample (numpy's rule:
+    a NaN makes the percentile and the median NaN)."""
+    order = np.argsort(column, kind="stable")  # NaN last
+    # The rows' weights gathered in sorted order (whole rows: fast), then laid out resample by
+    # resample, so that each running count runs along contiguous memory.
+    cumulative = np.cumsum(np.ascontiguousarray(row_weights[order].T), axis=1)  # resamples × sorted rows
+    position = np.stack([(cumulative <= ranks[:, [k]]).sum(axis=1) for k in range(ranks.shape[1])], axis=1)
+    values = column[order][np.minimum(position, len(column) - 1)]
+    has_nan = (row_weights[np.isnan(column)] > 0).any(axis=0)
+    values[has_nan] = np.nan
+    return values
+
+
+def _weighted_p80(column, row_weights, n):
+    """np.percentile(resample, 80) of each resample, as numpy computes it: the linear
+    interpolation between the order statistics around (n − 1)·0.8."""
+    virtual = (n - 1) * np.true_divide(80, 100)
+    previous = np.floor(virtual)
+    above = virtual >= n - 1  # numpy takes the largest value (index −1) there
+    previous[above] = -1
+    gamma = virtual - previous
+    low = np.where(above, n - 1, previous).astype(np.int64)
+    high = np.where(above, n - 1, previous + 1).astype(np.int64)
+    values = _weighted_order_statistics(column, row_weights, np.stack([low, high], axis=1))
+    return _lerp(values[:, 0], values[:, 1], gamma)
+
+
+def _weighted_median(column, row_weights, n):
+    """np.median of each resample: the middle value, or the mean of the two middle values."""
+    values = _weighted_order_statistics(column, row_weights, np.stack([(n - 1) // 2, n // 2], axis=1))
+    return np.where(n % 2 == 1, values[:, 0], (values[:, 0] + values[:, 1]) / 2)
+
+
+def resampled_target_statistics(columns, weights):
+    """target_statistics of every resample at once (resamples × STATISTICS × methods), bit for bit
+    what target_statistics gives on np.repeat(columns, weights[r], axis=0): the percentiles and
+    medians from order statistics of the weighted rows, the shares from weighted counts."""
+    m = columns.shape[1] // 3
+    hpd, entropy, likelihood = columns[:, :m], columns[:, m:2 * m], columns[:, 2 * m:]
+    n = weights.sum(axis=1)
+    row_weights = np.ascontiguousarray(weights.T)  # rows × resamples
+    out = np.empty((len(weights), len(STATISTICS), m))
+    for j in range(m):
+        out[:, 0, j] = _weighted_p80(hpd[:, j], row_weights, n)
+        out[:, 1, j] = _weighted_median(entropy[:, j], row_weights, n)
+        out[:, 4, j] = _weighted_p80(likelihood[:, j], row_weights, n)
+    for row, threshold in ((2, NEAR_TAIL), (3, TAIL)):
+        out[:, row, :] = (weights @ (hpd >= threshold).astype(np.int64)) / n[:, None]
+    return out
+
+
 def ks_uniform(values):
     """Kolmogorov-Smirnov distance of the values from U(0, 1) (plots/multiscan_cdf.py's)."""
     u = np.sort(np.clip(values, 0.0, 1.0))
@@ -108,8 +174,9 @@ class Figure:
 
     def __init__(self, targets, label):
         self.label, self.targets, self.methods = label, targets, targets.methods
-        point, draws = trial_resamples(targets.trial, np.hstack([targets.hpd, targets.entropy,
-                                                                 targets.hpd_likelihood]), target_statistics)
+        columns = np.hstack([targets.hpd, targets.entropy, targets.hpd_likelihood])
+        point = target_statistics(columns)
+        draws = resampled_target_statistics(columns, resample_weights(targets.trial))
         self.point = {s: point[i][None, :] for i, s in enumerate(STATISTICS)}  # 1 × methods
         self.draws = {s: draws[:, i, :] for i, s in enumerate(STATISTICS)}  # resamples × methods
 

@@ -23,7 +23,8 @@ PAIRS = ["a", "b"]
 FUZZ_LONG_RUNS = "fuzz/long-runs.csv"  # written by FUZZ_RECORD=fuzz/long-runs.csv scripts/fuzz.sh SECONDS
 FUZZ_TARGETS = ["experiment", "weights", "shard_meta", "spec"]  # fuzz/CMakeLists.txt
 
-RUNS = [Run(QUICKSTART, "./build/dabench run experiments/quickstart.ini --force", "the quick start's run")]
+RUNS = [Run(QUICKSTART, "./build/dabench run experiments/quickstart.ini --out results/quickstart --force",
+            "the quick start's reference run")]
 RUNS += [
     Run(f"{CLUSTER}/throughput-threads2",
         "./build/dabench run experiments/bp-throughput.ini --threads 2 --force --out results/cluster/throughput-threads2"),
@@ -63,7 +64,9 @@ SCHEDULE_STUDIES = [
 ]
 SCHEDULE_WORKERS = (16, 64, 256)
 STEPS = [Step("/usr/bin/python3 plots/fig6.py results/quickstart/summary.csv --out results/quickstart/fig6.png "
-              "--title \"2x3 grid, Pd = 0.6, lambda_fa = 0.01, r = 1\"", "the README's figure")]
+              "--title \"2x3 grid, Pd = 0.6, lambda_fa = 0.01, r = 1\"", "the README's figure"),
+         Step("/usr/bin/python3 -m reports.quickstart_check --digests results/quickstart",
+              "digests of the first 100, 200 and 1000 trials per spacing, which a shorter quick start is compared with")]
 TIMING_COLUMNS = ("time_us",)
 
 
@@ -79,6 +82,8 @@ def quickstart(report):
                        "largest mean over the spacings against the bound, two standard errors and the paper's rounding"))
     report.value("quickstart.peak", markdown.pm(m, se))
     report.value("quickstart.peak_spacing", peak["spacing"])
+    report.value("quickstart.trials", peak["trials"])
+    report.value("quickstart.rows", str(len(data.read_rows(report.root, f"{QUICKSTART}/summary.csv"))))
     meta = data.read_meta(report.root, QUICKSTART)
     report.value("quickstart.wall", markdown.duration(meta["wall_seconds"]))
     report.value("quickstart.threads", str(meta["threads"]))

@@ -13,6 +13,8 @@
 #include "harness/core/build_info.hpp"
 #include "tests/support/cli_contract.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench::test::cli;
 
 // ---------------------------------------------------------------------------------------------
@@ -127,3 +129,5 @@ TEST_CASE("cli: extra words after list, --help or --version are one-line errors"
   expect_error(dir, {"--version", "extra"}, {"--version", "extra"});
   expect_error(dir, {"--help", "extra"}, {"extra"});
 }
+
+}  // namespace DABENCH_TEST_FILE

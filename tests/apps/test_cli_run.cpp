@@ -10,6 +10,8 @@
 
 #include "tests/support/cli_contract.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench::test::cli;
 
 // ---------------------------------------------------------------------------------------------
@@ -281,3 +283,5 @@ TEST_CASE("cli run --shard: bad values and a resume of another shard are one-lin
   expect_error(dir, {"run", "e.ini", "--shard", "2/2", "--out", "s", "--resume"}, {"s", "shard 1/2", "shard 2/2"});
   expect_error(dir, {"run", "e.ini", "--out", "s", "--resume"}, {"s", "shard 1/2", "no shard"});
 }
+
+}  // namespace DABENCH_TEST_FILE

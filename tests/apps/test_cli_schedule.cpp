@@ -8,6 +8,8 @@
 
 #include "tests/support/cli_runner.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench::test::cli;
 
 namespace {
@@ -93,3 +95,5 @@ TEST_CASE("cli schedule: bad input is one error line", "[cli][schedule]") {
     CHECK(contains(result.err, mention));
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -14,6 +14,8 @@
 
 #include "tests/support/cli_contract.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench::test::cli;
 
 namespace {
@@ -425,3 +427,5 @@ TEST_CASE("cli solve --time: a refused problem exits 3 without timing", "[cli][s
   CHECK(result.out.empty());
   CHECK(contains(result.err, "skipped:"));
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -17,6 +17,8 @@
 #include "tests/support/cost_matrix.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 
 namespace {
@@ -299,3 +301,5 @@ TEST_CASE("murty: bad input is a one-line InputError", "[murty]") {
   CHECK(test::input_error_message([&] { merger.merge({}, -2, total, choices); }) ==
         "ranked list merge: k must be at least 1 (got -2)");
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -6,7 +6,9 @@
 
 #include "harness/core/cache_aligned.hpp"
 
-namespace dabench {
+namespace DABENCH_TEST_FILE {
+
+using dabench::CacheAlignedVector;
 
 TEST_CASE("cache_aligned: storage starts on a cache line before and after growth", "[harness]") {
   for (std::size_t size : {1u, 3u, 8u, 100u, 4097u}) {
@@ -21,4 +23,4 @@ TEST_CASE("cache_aligned: storage starts on a cache line before and after growth
   }
 }
 
-}  // namespace dabench
+}  // namespace DABENCH_TEST_FILE

@@ -17,6 +17,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test::cli;
 using dabench::test::input_error_message;
@@ -269,3 +271,5 @@ TEST_CASE("experiment: errors throw InputError naming the file", "[experiment]")
                    "the sweep has 1.2e+05 points"));
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -8,6 +8,8 @@
 #include "harness/core/cache_aligned.hpp"
 #include "harness/core/grow_buffer.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 TEST_CASE("grow_buffer: grows to the request, never shrinks, keeps storage that fits", "[grow_buffer]") {
   std::vector<int> buffer;
   dabench::grow_buffer(buffer, 5);
@@ -34,3 +36,5 @@ TEST_CASE("grow_buffer: cache-aligned vectors stay aligned as they grow", "[grow
   }
   CHECK(buffer.size() == 100);
 }
+
+}  // namespace DABENCH_TEST_FILE

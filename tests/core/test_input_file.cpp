@@ -9,6 +9,8 @@
 #include "harness/core/input_file.hpp"
 #include "tests/support/cli_runner.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using dabench::InputError;
 using dabench::printable;
 
@@ -41,3 +43,5 @@ TEST_CASE("input file: printable escapes control bytes and malformed UTF-8 only"
   CHECK(printable("\xE2\x88") == "\\xE2\\x88");                                // cut short at the end
   CHECK(printable("\xC3") == "\\xC3");
 }
+
+}  // namespace DABENCH_TEST_FILE

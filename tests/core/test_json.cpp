@@ -9,6 +9,8 @@
 
 #include "harness/core/json.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 
 TEST_CASE("json_value reads back JsonObject's fields", "[json]") {
@@ -28,3 +30,5 @@ TEST_CASE("json_value reads back JsonObject's fields", "[json]") {
   CHECK_FALSE(json_value(R"({"text": "cut)", "text").has_value());
   CHECK(json_value("{\"a\": \"x\",\n\"a\": \"y\"}", "a") == "x");  // the first occurrence
 }
+
+}  // namespace DABENCH_TEST_FILE

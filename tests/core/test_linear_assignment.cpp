@@ -19,6 +19,8 @@
 #include "harness/core/random_stream.hpp"
 #include "tests/support/cost_matrix.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 
 namespace {
@@ -374,3 +376,5 @@ TEST_CASE("linear assignment: repeated solves with one object give identical res
   }
   CHECK(feasible > 20);
 }
+
+}  // namespace DABENCH_TEST_FILE

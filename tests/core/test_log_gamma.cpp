@@ -6,6 +6,8 @@
 
 #include "harness/core/log_gamma.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 TEST_CASE("log_gamma: equals std::lgamma bit for bit, and ln (n-1)! at integers", "[core]") {
   for (double x = 0.01; x < 1e6; x *= 1.37) CHECK(dabench::log_gamma(x) == std::lgamma(x));
   CHECK(dabench::log_gamma(1.0) == 0.0);
@@ -13,3 +15,5 @@ TEST_CASE("log_gamma: equals std::lgamma bit for bit, and ln (n-1)! at integers"
   CHECK(dabench::log_gamma(5.0) == Approx(std::log(24.0)).epsilon(1e-15));
   CHECK(dabench::log_gamma(0.5) == Approx(0.5 * std::log(3.14159265358979323846)).epsilon(1e-15));
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -15,6 +15,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 
 using dabench::test::input_error_message;
@@ -249,3 +251,5 @@ TEST_CASE("params: make_single_scan_solver rejects bad specs and names the key o
     CHECK(contains(solver_error("bp:delta=1,delta=2"), "delta"));
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

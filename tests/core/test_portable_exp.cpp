@@ -8,6 +8,8 @@
 
 #include "harness/core/portable_exp.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using dabench::portable_exp;
 
 namespace {
@@ -58,3 +60,5 @@ TEST_CASE("portable_exp: subnormal results, underflow, overflow, infinities and 
   CHECK(portable_exp(kInfinity) == kInfinity);
   CHECK(std::isnan(portable_exp(std::numeric_limits<double>::quiet_NaN())));
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -13,6 +13,8 @@
 
 #include "harness/core/random_stream.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 
 namespace {
@@ -204,3 +206,5 @@ TEST_CASE("random: poisson mean and variance and pmf on both branches", "[random
     }
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -12,6 +12,8 @@
 
 #include "harness/core/repeat_timing.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 
 namespace {
@@ -110,3 +112,5 @@ TEST_CASE("repeat timing: validate names the broken field", "[repeat_timing]") {
   options.min_sample_seconds = -1e-3;
   CHECK(options.validate().find("min_sample_seconds") != std::string::npos);
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -19,6 +19,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test::cli;
 using dabench::test::input_error_message;
@@ -245,3 +247,5 @@ TEST_CASE("summary: write_summary rejects malformed trials.csv naming file and l
     CHECK(contains(message, "absent.csv"));
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -12,6 +12,8 @@
 #include "harness/core/params.hpp"
 #include "scenarios/multi_scan/bearings.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::BearingsDetails;
@@ -353,3 +355,5 @@ TEST_CASE("bearings: from a site the particles and weights represent the uniform
             .validate()
             .empty());
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -22,6 +22,8 @@
 #include "tests/support/free_energy_kkt.hpp"
 #include "tests/support/multi_scan.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -315,3 +317,5 @@ TEST_CASE("column dual: a non-finite factor ends the solve as skipped:numerical"
     }
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -18,6 +18,8 @@
 #include "tests/support/free_energy_kkt.hpp"
 #include "tests/support/multi_scan.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -261,3 +263,5 @@ TEST_CASE("registered methods reject invalid options") {
   CHECK_THROWS_AS(make_multi_scan_solver("msbp:max_sweeps=0"), InputError);
   CHECK_NOTHROW(make_multi_scan_solver("cvsh:gamma=1"));
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -14,6 +14,8 @@
 #include "harness/core/random_stream.hpp"
 #include "harness/multi_scan/registry.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::MultiScanBeliefs;
@@ -162,3 +164,5 @@ TEST_CASE("jpda-bp: shared measurements are approximated scan by scan", "[jpda_b
   // After three scans with shared measurements the product of marginals is not exact.
   CHECK(max_difference(beliefs.track, exact_track_beliefs(problem)) > 1e-4);
 }
+
+}  // namespace DABENCH_TEST_FILE

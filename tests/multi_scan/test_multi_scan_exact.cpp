@@ -5,6 +5,8 @@
 
 #include "tests/support/multi_scan.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -86,3 +88,5 @@ TEST_CASE("ms-exact: an all-zero history space is skipped not divided by zero") 
   const MultiScanRun run = run_multi_scan("ms-exact", one_scan({prior}, {zero}));
   CHECK(run.report.skipped == "zero_partition");
 }
+
+}  // namespace DABENCH_TEST_FILE

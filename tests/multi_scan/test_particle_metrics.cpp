@@ -18,6 +18,8 @@
 #include "scenarios/multi_scan/bearings.hpp"
 #include "tests/support/kolmogorov_smirnov.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::KeyValue;
@@ -187,3 +189,5 @@ TEST_CASE("particle metrics: an overconfident belief fails the uniformity test",
   INFO("KS D = " << d);
   CHECK(d > 2.0 * ks_critical_5_percent(values.size()));
 }
+
+}  // namespace DABENCH_TEST_FILE

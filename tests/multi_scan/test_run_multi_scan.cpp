@@ -20,6 +20,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/run_files.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench::test::cli;
 namespace fs = std::filesystem;
 
@@ -223,3 +225,5 @@ TEST_CASE("run multi-scan: configuration errors are one clear line", "[run][mult
   check_refused_on_command_line(
       dir, "scenario = bearings\ntrials = 2\nalgorithm = jpda-bp\n[scenario]\nparticles = 0\n", {"particles = 0"});
 }
+
+}  // namespace DABENCH_TEST_FILE

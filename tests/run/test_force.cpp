@@ -18,6 +18,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/run_files.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test::cli;
 namespace fs = std::filesystem;
@@ -107,3 +109,5 @@ TEST_CASE("force: every kind's result files are known to run_file_names", "[run]
   // And every known name is written by one of these plans (no stale entry in the list).
   CHECK(seen == std::set<std::string>(known.begin(), known.end()));
 }
+
+}  // namespace DABENCH_TEST_FILE

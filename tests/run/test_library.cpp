@@ -19,6 +19,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -177,3 +179,5 @@ TEST_CASE("library: run_experiment runs an experiment file", "[library]") {
   CHECK(dir.exists("out/summary.csv"));
   CHECK(dir.exists("out/meta.json"));
 }
+
+}  // namespace DABENCH_TEST_FILE

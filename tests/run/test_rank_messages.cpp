@@ -9,6 +9,8 @@
 
 #include "harness/run/rank_messages.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 
 TEST_CASE("rank messages: fields round trip byte for byte", "[run][mpi]") {
@@ -70,3 +72,5 @@ TEST_CASE("rank messages: truncated, padded or mistyped messages are refused", "
   CHECK_THROWS_AS(decode_chunk_result(encode(short_times)), std::runtime_error);
   CHECK_THROWS_AS(decode_hello(pack_fields({"host", "fingerprint"})), std::runtime_error);
 }
+
+}  // namespace DABENCH_TEST_FILE

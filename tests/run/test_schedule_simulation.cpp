@@ -9,6 +9,8 @@
 #include "harness/run/schedule_simulation.hpp"
 #include "tests/support/cli_runner.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using dabench::test::cli::TempDir;
 
@@ -102,3 +104,5 @@ TEST_CASE("schedule: simulated wall times of hand-computed schedules", "[run][sc
   // 8 workers: every unit at once; the 4 s units bound the wall.
   CHECK(simulate_work_queue(costs, 8).wall_seconds == 4.0);
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -13,6 +13,8 @@
 #include "harness/run/shard_meta.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using dabench::test::input_error_message;
 
@@ -91,3 +93,5 @@ TEST_CASE("shard meta: threads stays in 1..65536 whatever the file says", "[run]
   CHECK(threads("\"many\"") == 1);
   CHECK(threads("null") == 1);
 }
+
+}  // namespace DABENCH_TEST_FILE

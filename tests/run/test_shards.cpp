@@ -26,6 +26,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/run_files.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test::cli;
 namespace fs = std::filesystem;
@@ -212,3 +214,5 @@ TEST_CASE("shards: a shard cut mid-item and resumed merges to the same files", "
   merge_into(dir, "merged", {"s1", "s2"});
   check_same_run(dir, "full", "merged");
 }
+
+}  // namespace DABENCH_TEST_FILE

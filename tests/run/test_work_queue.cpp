@@ -7,6 +7,8 @@
 
 #include "harness/run/work_queue.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 
 namespace {
@@ -102,3 +104,5 @@ TEST_CASE("work queue: longest first by a previous run's unit times", "[run][sch
   while (const auto chunk = queue.take()) order.push_back(chunk->begin);
   CHECK(order == std::vector<long long>{1, 4, 3, 2, 0, 5});
 }
+
+}  // namespace DABENCH_TEST_FILE

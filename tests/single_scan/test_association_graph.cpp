@@ -14,6 +14,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 
 namespace {
@@ -97,3 +99,5 @@ TEST_CASE("association graph: ehm and jt write a lone target's row with it", "[a
   CHECK(ehm.stats().log_partition == Approx(log_z).epsilon(1e-14));
   CHECK(jt.log_partition() == Approx(log_z).epsilon(1e-14));
 }
+
+}  // namespace DABENCH_TEST_FILE

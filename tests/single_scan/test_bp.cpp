@@ -18,6 +18,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -535,3 +537,5 @@ TEST_CASE("bp: dense-block and sparse kernels give bit-identical results", "[bp]
   }
   CHECK(compared > 100);
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -11,6 +11,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -112,3 +114,5 @@ TEST_CASE("cheap jpda: bad options and overflowing sums", "[cheap_jpda]") {
   auto solver = make_single_scan_solver("cheap-jpda");
   CHECK(run_solver(*solver, problem).report.skipped == "numerical");
 }
+
+}  // namespace DABENCH_TEST_FILE

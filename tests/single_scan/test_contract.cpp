@@ -19,6 +19,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -186,3 +188,5 @@ TEST_CASE("contract: results depend only on the problem (bit-identical)", "[cont
     CHECK(bit_identical(a1, fresh[5]));
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

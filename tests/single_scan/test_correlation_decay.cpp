@@ -21,6 +21,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -381,3 +383,5 @@ TEST_CASE("cd: options", "[cd]") {
   const RowMatrix off = run_solver(*make_single_scan_solver("cd:depth=7,memo_entries=0"), problem).marginals;
   CHECK(same_bits(off, solve_cd(problem, 7)));
 }
+
+}  // namespace DABENCH_TEST_FILE

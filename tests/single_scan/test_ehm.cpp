@@ -15,6 +15,8 @@
 #include "tests/support/brute_force.hpp"
 #include "tests/support/shuffled_blocks.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -455,3 +457,5 @@ TEST_CASE("ehm: options are validated", "[ehm]") {
   bad.threshold = -1.0;
   CHECK_FALSE(bad.validate().empty());
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -12,6 +12,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -314,3 +316,5 @@ TEST_CASE("exact: work limit refuses instead of hanging", "[exact]") {
   CHECK(run_solver(*make_single_scan_solver("exact:max_events=34"), small).report.skipped.empty());
   CHECK_FALSE(run_solver(*make_single_scan_solver("exact:max_events=10"), small).report.skipped.empty());
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -14,6 +14,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -144,3 +146,5 @@ TEST_CASE("kbest-jpda: k events are the k most probable, renormalised, and their
   }
   CHECK_THROWS(make_single_scan_solver("kbest-jpda:k=0"));
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -26,6 +26,8 @@
 #include "tests/support/brute_force.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -482,3 +484,5 @@ TEST_CASE("fbp: weights whose row or column sum reaches 2^1020 are refused, not 
   REQUIRE(solved.report.skipped.empty());
   for (int i = 0; i < 2; ++i) CHECK(solved.marginals(i, 1) == Approx(0.5).epsilon(1e-9));
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -13,6 +13,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "scenarios/single_scan/grid.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::GridDetails;
@@ -381,3 +383,5 @@ TEST_CASE("grid: a draw is a function of (seed, point, trial) alone", "[grid]") 
   const bool differs = c.problem.psi.cols() != a.problem.psi.cols() || c.problem.psi != a.problem.psi;
   CHECK(differs);
 }
+
+}  // namespace DABENCH_TEST_FILE

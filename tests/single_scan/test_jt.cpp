@@ -21,6 +21,8 @@
 #include "tests/support/brute_force.hpp"
 #include "tests/support/shuffled_blocks.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -521,3 +523,5 @@ TEST_CASE("jt: options are validated", "[jt]") {
   CHECK_THROWS_AS(make_single_scan_solver("jt:depth=3"), InputError);
   CHECK(make_single_scan_solver("jt:threshold=1e-3,threshold_on=2,memory_mb=64") != nullptr);
 }
+
+}  // namespace DABENCH_TEST_FILE

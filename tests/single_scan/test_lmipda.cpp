@@ -15,6 +15,8 @@
 #include "tests/support/brute_force.hpp"
 #include "tests/support/pda_reference.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -256,3 +258,5 @@ TEST_CASE("lmipda: relabelling targets and measurements permutes the marginals",
     CHECK(scaled_error(permuted, expected, 1e-13, 1e-300) <= 1.0);
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -16,6 +16,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -310,3 +312,5 @@ TEST_CASE("map: MapAssignment reused across problems of different shapes gives t
     }
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

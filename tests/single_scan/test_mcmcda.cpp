@@ -20,6 +20,8 @@
 #include "harness/single_scan/registry.hpp"
 #include "tests/support/brute_force.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -276,3 +278,5 @@ TEST_CASE("mcmcda: options are validated", "[mcmcda]") {
   CHECK_THROWS(make_single_scan_solver("mcmcda:steps=10"));
   CHECK_NOTHROW(make_single_scan_solver("mcmcda:samples=1e6,burnin=100,seed=3"));
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -24,8 +24,12 @@
 #include "harness/core/build_info.hpp"
 #include "tests/support/cli_contract.hpp"
 #include "tests/support/cli_runner.hpp"
+#include "tests/support/sanitized.hpp"
+
+namespace DABENCH_TEST_FILE {
 
 using namespace dabench::test::cli;
+using dabench::test::sanitized_size;
 namespace fs = std::filesystem;
 
 namespace {
@@ -54,8 +58,9 @@ const std::vector<std::string> kTinySpecs = {"exact", "bp", "bp:delta=1e-6", "bp
 const std::vector<std::string> kTinySpacings = {"0.5", "2", "3.5"};
 constexpr int kTinyTrials = 40;
 
-// A slower experiment for the SIGINT test: with --trials 1500 about a second on 2 cores (the
-// exact reference dominates; denser clutter makes its clusters larger).
+// A slower experiment for the SIGINT tests: with --trials 1500 about a second on 2 cores (the
+// exact reference dominates; denser clutter makes its clusters larger); a fifth of the trials
+// under a sanitizer, which slows it about as much.
 const char* const kLong =
     "scenario = grid\n"
     "trials = 10\n"
@@ -340,7 +345,8 @@ TEST_CASE("run: results do not depend on the thread count and follow the seed", 
 TEST_CASE("run: SIGINT stops with status 130 and --resume finishes identically", "[run][resume]") {
   TempDir dir;
   dir.write("long.ini", kLong);
-  const std::vector<std::string> common = {"run", "long.ini", "--trials", "1500"};
+  const int trials = sanitized_size(1500, 5);
+  const std::vector<std::string> common = {"run", "long.ini", "--trials", std::to_string(trials)};
   auto with = [&](std::vector<std::string> extra) {
     std::vector<std::string> args = common;
     args.insert(args.end(), extra.begin(), extra.end());
@@ -348,7 +354,7 @@ TEST_CASE("run: SIGINT stops with status 130 and --resume finishes identically",
   };
   run_ok(dir, with({"--threads", "2", "--out", "A"}));
   const std::size_t rows_per_item = 3;
-  const std::size_t total_rows = 2 * 1500 * rows_per_item;
+  const std::size_t total_rows = 2 * static_cast<std::size_t>(trials) * rows_per_item;
 
   {
     CliProcess process(with({"--threads", "2", "--out", "B"}), dir.work(), dir.io());
@@ -537,8 +543,9 @@ TEST_CASE("run: the command suggested after an interrupted --force run finishes 
   dir.write("long.ini", kLong);
   run_ok(dir, {"run", "long.ini", "--trials", "3", "--out", "F"});  // a finished run to --force over
   fs::remove(dir.work() / "F" / "trials.csv");                      // (so the poll below sees the new one)
-  CliProcess process({"run", "long.ini", "--trials", "600", "--threads", "2", "--out", "F", "--force"}, dir.work(),
-                     dir.io());
+  CliProcess process({"run", "long.ini", "--trials", std::to_string(sanitized_size(600, 5)), "--threads", "2", "--out", "F",
+                      "--force"},
+                     dir.work(), dir.io());
   const fs::path trials = dir.work() / "F" / "trials.csv";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   while (std::chrono::steady_clock::now() < deadline) {
@@ -599,3 +606,5 @@ TEST_CASE("run: fallback references run only when the ones before them are skipp
   CHECK(primary_used > 10);   // wide spacing: tiny clusters
   CHECK(fallback_used > 10);  // spacing 0: six targets in one cluster
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -18,6 +18,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using dabench::RowMatrix;
 using dabench::Vector;
 using dabench::WeightsFormat;
@@ -185,3 +187,5 @@ TEST_CASE("weights layouts: dabench solve --layout and --log read them", "[layou
   CHECK(bad.status == 2);
   CHECK(cli::contains(bad.err, "unknown weights layout 'pyehm'"));
 }
+
+}  // namespace DABENCH_TEST_FILE

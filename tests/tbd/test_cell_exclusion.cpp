@@ -17,6 +17,8 @@
 #include "harness/core/random_stream.hpp"
 #include "harness/tbd/problem.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::CellExclusion;
@@ -201,3 +203,5 @@ TEST_CASE("cell exclusion: posterior weights carry the messages at the particles
   for (const double l : nodes[0].log_weight) mass += std::exp(l);
   CHECK(lone.existence(0) == Approx(0.7 * mass / (0.7 * mass + 0.3)).epsilon(1e-14));
 }
+
+}  // namespace DABENCH_TEST_FILE

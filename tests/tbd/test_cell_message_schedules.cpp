@@ -24,6 +24,8 @@
 #include "harness/tbd/problem.hpp"
 #include "tests/support/tbd_frames.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::CellMessageOptions;
@@ -266,3 +268,5 @@ TEST_CASE("tbd cell messages: flooding keeps two POs on one object both or neith
     CHECK(serial[1] > 0.0);
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

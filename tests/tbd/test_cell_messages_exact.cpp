@@ -21,6 +21,8 @@
 #include "harness/tbd/problem.hpp"
 #include "tests/support/cell_messages.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using namespace dabench;
@@ -263,3 +265,5 @@ TEST_CASE("tbd cell messages: exact kappa refuses a cell reached by three POs", 
   options.exact = false;
   CHECK(messages.run(m.sensor, m.gamma, frame, pointers(objects), options));
 }
+
+}  // namespace DABENCH_TEST_FILE

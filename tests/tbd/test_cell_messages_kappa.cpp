@@ -22,6 +22,8 @@
 #include "harness/tbd/problem.hpp"
 #include "tests/support/cell_messages.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using namespace dabench;
@@ -268,3 +270,5 @@ TEST_CASE("tbd cell messages: iteration 2 uses the extrinsic beta of the iterati
     }
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

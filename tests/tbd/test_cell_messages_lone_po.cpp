@@ -19,6 +19,8 @@
 #include "harness/tbd/problem.hpp"
 #include "tests/support/cell_messages.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using namespace dabench;
@@ -153,3 +155,5 @@ TEST_CASE("tbd cell messages: without interaction the log ratios of a PO ignore 
     }
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

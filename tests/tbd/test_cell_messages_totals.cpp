@@ -20,6 +20,8 @@
 #include "harness/tbd/problem.hpp"
 #include "tests/support/cell_messages.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using namespace dabench;
@@ -151,3 +153,5 @@ TEST_CASE("tbd cell messages: windows are the cells within the support radius an
     }
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

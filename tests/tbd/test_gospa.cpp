@@ -19,6 +19,8 @@
 #include "harness/tbd/gospa.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 
 namespace {
@@ -290,3 +292,5 @@ TEST_CASE("gospa: options are validated, non-finite points rejected", "[gospa]")
   CHECK_THROWS_AS(gospa.compute({{nan, 0.0}}, x), std::invalid_argument);
   CHECK_THROWS_AS(gospa.compute(x, {{0.0, 0.0}, {0.0, inf}}), std::invalid_argument);
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -16,6 +16,8 @@
 #include "scenarios/tbd/tbd.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::read_magnitude_frame;
@@ -116,3 +118,5 @@ TEST_CASE("magnitude frame: the toy with `frame` uses the file's frame for every
   CHECK_THAT(dabench::test::input_error_message([&] { entry->create({{"layout", "toy"}, {"frame", "/dev/zero"}}); }),
              Catch::Matchers::Contains("not a regular file"));
 }
+
+}  // namespace DABENCH_TEST_FILE

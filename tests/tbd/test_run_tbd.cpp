@@ -19,6 +19,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/run_files.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench::test::cli;
 
 namespace {
@@ -182,3 +184,5 @@ TEST_CASE("run tbd: beliefs = true writes trial 0's final beliefs, normalised pe
   CHECK(result.status != 0);
   CHECK(result.err.find("beliefs = true") != std::string::npos);
 }
+
+}  // namespace DABENCH_TEST_FILE

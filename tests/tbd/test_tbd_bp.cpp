@@ -28,6 +28,8 @@
 #include "tests/support/tbd_frames.hpp"
 #include "tests/support/tbd_runs.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using namespace dabench;
@@ -305,3 +307,5 @@ TEST_CASE("tbd-bp: merge_distance deletes a duplicate PO and keeps distant ones"
   CHECK_THAT(input_error_message([] { dabench::make_tbd_tracker("tbd-bp:merge_distance=-1"); }),
              Catch::Contains("merge_distance"));
 }
+
+}  // namespace DABENCH_TEST_FILE

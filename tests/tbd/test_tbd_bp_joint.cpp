@@ -20,6 +20,8 @@
 #include "tests/support/input_error.hpp"
 #include "tests/support/tbd_frames.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using namespace dabench;
@@ -128,3 +130,5 @@ TEST_CASE("tbd-bp joint schedule: it needs the Gaussian messages with interactio
   CHECK_THAT(message({{"schedule", "joint"}, {"interaction", "false"}}), Contains("interaction = true"));
   CHECK_NOTHROW(dabench::make_options<TbdBpOptions>({{"schedule", "joint"}}, "tbd-bp"));
 }
+
+}  // namespace DABENCH_TEST_FILE

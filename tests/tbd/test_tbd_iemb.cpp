@@ -27,6 +27,8 @@
 #include "tests/support/tbd_frames.hpp"
 #include "tests/support/tbd_runs.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::GaussianBernoulli;
@@ -721,3 +723,5 @@ TEST_CASE("tbd-iemb: invalid options are input errors naming the field", "[tbd][
   CHECK_NOTHROW(make_tbd_tracker("tbd-iemb:iterations=1,max_window=3,pruning_threshold=0,merge_distance=0"));
   CHECK_NOTHROW(make_tbd_tracker("tbd-iemb:iterations=100,max_window=64,detection_threshold=0.01,pruning_threshold=0.005"));
 }
+
+}  // namespace DABENCH_TEST_FILE

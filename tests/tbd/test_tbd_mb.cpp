@@ -31,6 +31,8 @@
 #include "tests/support/tbd_frames.hpp"
 #include "tests/support/tbd_runs.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using namespace dabench;
@@ -250,3 +252,5 @@ TEST_CASE("tbd-mb: same seed gives identical output; bad options are named", "[t
     CHECK_THAT(message, Catch::Contains(field));
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -17,6 +17,8 @@
 #include "harness/tbd/registry.hpp"
 #include "tests/support/tbd_frames.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::TbdProblem;
@@ -64,3 +66,5 @@ TEST_CASE("tbd trackers: a non-finite frame cell is a recorded failure, not a pr
     }
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -16,6 +16,8 @@
 #include "tests/support/kolmogorov_smirnov.hpp"
 #include "tests/support/scenario_draws.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using namespace dabench;
@@ -531,3 +533,5 @@ TEST_CASE("tbd scenario: bad options are one-line errors naming the field", "[tb
   }
   CHECK_NOTHROW(entry->create({{"layout", "toy"}, {"objects", "2"}, {"steps", "1"}, {"rows", "10"}}));
 }
+
+}  // namespace DABENCH_TEST_FILE

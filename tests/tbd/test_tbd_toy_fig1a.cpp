@@ -18,6 +18,8 @@
 #include "harness/core/solve_report.hpp"
 #include "harness/tbd/registry.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 const std::string kFig1a = std::string(DABENCH_SOURCE_DIR) + "/experiments/data/tbd-fig1a-frame.csv";
@@ -67,3 +69,5 @@ TEST_CASE("tbd toy on the supplement's Fig. 1(a) frame: PO 1's beliefs sit at th
   CHECK(along(free) > along(exact) + 0.2);
   CHECK(std::abs(along(approx) - along(exact)) < 0.1);
 }
+
+}  // namespace DABENCH_TEST_FILE

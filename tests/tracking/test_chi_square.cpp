@@ -8,6 +8,8 @@
 
 #include "algorithms/tracking/chi_square.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using dabench::chi_square_quantile;
 
 TEST_CASE("chi-square quantile: known quantiles to the stated accuracy", "[chi_square]") {
@@ -62,3 +64,5 @@ TEST_CASE("chi-square quantile: outside its domain it throws", "[chi_square]") {
   CHECK_THROWS_AS(chi_square_quantile(0.5, 0), std::invalid_argument);
   CHECK_THROWS_AS(chi_square_quantile(0.5, 101), std::invalid_argument);
 }
+
+}  // namespace DABENCH_TEST_FILE

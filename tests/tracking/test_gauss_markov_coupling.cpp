@@ -16,6 +16,8 @@
 #include "algorithms/tracking/gauss_markov_coupling.hpp"
 #include "algorithms/tracking/jdt_vb_free_energy_terms.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::Gaussian;
@@ -293,3 +295,5 @@ TEST_CASE("gauss-markov coupling: degenerate inputs give a finite coupling of a 
   CHECK_FALSE(dabench::gauss_markov_coupling(not_pd, base, othr.f, Eigen::LLT<MatrixXd>(othr.q)).has_value());
   CHECK_FALSE(dabench::gauss_markov_coupling(base, not_pd, othr.f, Eigen::LLT<MatrixXd>(othr.q)).has_value());
 }
+
+}  // namespace DABENCH_TEST_FILE

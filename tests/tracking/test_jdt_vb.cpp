@@ -18,6 +18,8 @@
 #include "scenarios/tracking/othr.hpp"
 #include "tests/support/tracker_runs.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::othr::GroundState;
@@ -401,3 +403,5 @@ TEST_CASE("jdt-vb: the iteration history holds the tracks before and after every
   const auto after = dabench::compute_tracking_metrics(sample.truth, tracks, {});
   CHECK(after.aee_range_km < before.aee_range_km);  // smoothing over the run beats filtering
 }
+
+}  // namespace DABENCH_TEST_FILE

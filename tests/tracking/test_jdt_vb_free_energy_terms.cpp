@@ -19,6 +19,8 @@
 #include "algorithms/tracking/multipath_association.hpp"
 #include "scenarios/tracking/othr.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::Gaussian;
@@ -399,3 +401,5 @@ TEST_CASE("jdt-vb free energy: the meta-state chain terms equal enumeration of a
   dabench::meta_state_forward_backward(evidence, 0.3, stay, posterior);
   CHECK(dabench::meta_state_energy(posterior, evidence, 0.3, stay) == Approx(posterior.log_partition).epsilon(1e-12));
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -17,6 +17,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/run_files.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench::test::cli;
 
 namespace {
@@ -125,3 +127,5 @@ TEST_CASE("run tracking: a UKF failure writes a failed: row and no NaN metric", 
   CHECK(summary.at(0, "nvt_count") == "0");
   CHECK(summary.at(1, "ok") == "2");
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -21,6 +21,8 @@
 #include "scenarios/tracking/othr.hpp"
 #include "tests/support/tracker_runs.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 dabench::TrackingScenarioSample draw(double pd, double clutter, int run, int scans = 30) {
@@ -256,3 +258,5 @@ TEST_CASE("md-hmht: options are checked", "[md_hmht]") {
   sample.problem.scans[1](0, 0) = std::nan("");
   CHECK_THROWS_WITH(tracker->run(sample.problem, tracks, report), Catch::Contains("not finite"));
 }
+
+}  // namespace DABENCH_TEST_FILE

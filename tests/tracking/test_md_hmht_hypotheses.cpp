@@ -28,6 +28,8 @@
 #include "scenarios/tracking/othr.hpp"
 #include "tests/support/tracker_runs.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::Gaussian;
@@ -660,3 +662,5 @@ TEST_CASE("md-hmht: a track survives limit - 1 empty-gate scans as the same trac
   CHECK(dabench::test::solved_tracks("md-hmht:deletion_misses=2", one_target_with_gap(125.0, 20, 10, 12)).tracks.size() == 2);
   CHECK(dabench::test::solved_tracks("md-hmht:deletion_misses=6", one_target_with_gap(400.0, 20, 10, 15)).tracks.size() == 1);
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -9,6 +9,8 @@
 #include "algorithms/tracking/meta_state_chain.hpp"
 #include "harness/core/errors.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using Evidence = std::vector<std::array<double, 2>>;
@@ -133,3 +135,5 @@ TEST_CASE("meta-state chain: bad input is an InputError", "[meta_state]") {
   // p(s_1 = 1) = 1 with the active state ruled out at scan 1: no sequence is possible.
   CHECK_THROWS_AS(dabench::meta_state_forward_backward({{0.0, -HUGE_VAL}}, 1.0, 0.85, q), dabench::InputError);
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -18,6 +18,8 @@
 #include "scenarios/tracking/othr.hpp"
 #include "tests/support/tracker_runs.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::mptf::Estimate;
@@ -291,3 +293,5 @@ TEST_CASE("mptf: same input gives identical tracks", "[mptf]") {
     CHECK(a.tracks[i].states.allFinite());
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -21,6 +21,8 @@
 #include "tests/support/brute_force.hpp"
 #include "tests/support/input_error.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench;
 using namespace dabench::test;
 
@@ -273,3 +275,5 @@ TEST_CASE("multipath: bad evidence and options are rejected by name", "[multipat
   CHECK_THAT(message(good, {.tolerance = 0.0}), Catch::Contains("tolerance must be > 0"));
   CHECK_THAT(message(good, {.max_iterations = 0}), Catch::Contains("max_iterations must be >= 1"));
 }
+
+}  // namespace DABENCH_TEST_FILE

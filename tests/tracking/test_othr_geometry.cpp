@@ -8,6 +8,8 @@
 
 #include "scenarios/tracking/othr_geometry.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::othr::GroundState;
@@ -145,3 +147,5 @@ TEST_CASE("othr geometry: ground_state_from_slant inverts eq 57 on every path", 
   dabench::othr::GroundState none;
   CHECK_FALSE(dabench::othr::ground_state_from_slant({150.0, 0.0, 0.5}, dabench::othr::kPathTable[3], none));
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -14,6 +14,8 @@
 #include "scenarios/tracking/othr.hpp"
 #include "tests/support/scenario_draws.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using namespace dabench;
@@ -234,3 +236,5 @@ TEST_CASE("othr scenario: registry builds it and the model handed to trackers is
   CHECK_THROWS_AS(entry->create({{"scans", "0"}}), dabench::InputError);
   CHECK_THROWS_AS(entry->create({{"clutter", "-1"}}), dabench::InputError);
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -24,6 +24,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/run_files.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench::test::cli;
 using dabench::SolveReport;
 using dabench::Track;
@@ -601,3 +603,5 @@ TEST_CASE("run tracking: from the command line an unknown tracker is one line, s
                                 "scenario = othr\ntrials = 2\nalgorithm = no-such-tracker\n[sweep]\npd = 0.75, 0.4\n",
                                 {"bad.ini: unknown tracker 'no-such-tracker' (known: "});
 }
+
+}  // namespace DABENCH_TEST_FILE

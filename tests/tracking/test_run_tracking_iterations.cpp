@@ -24,6 +24,8 @@
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/run_files.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 using namespace dabench::test::cli;
 using dabench::SolveReport;
 using dabench::Track;
@@ -363,3 +365,5 @@ TEST_CASE("run tracking iterations: othr, --resume after a hard kill finishes id
     CHECK(dir.read("A/iterations.csv") == iterations);
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -17,6 +17,8 @@
 #include "harness/tracking/registry.hpp"
 #include "scenarios/tracking/othr.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using namespace dabench;
@@ -99,3 +101,5 @@ TEST_CASE("tracker contract: every tracker returns valid tracks that depend only
     }
   }
 }
+
+}  // namespace DABENCH_TEST_FILE

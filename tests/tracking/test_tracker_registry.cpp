@@ -7,6 +7,8 @@
 
 #include "harness/tracking/registry.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 // A test-only tracker: one track per scan holding `value` in every state entry.
@@ -68,3 +70,5 @@ TEST_CASE("tracker registry: unknown names and keys and invalid values are input
   CHECK_THROWS_AS(dabench::make_tracker("test-constant-tracker:nokey=1"), dabench::InputError);
   CHECK_THROWS_AS(dabench::make_tracker("test-constant-tracker:value=abc"), dabench::InputError);
 }
+
+}  // namespace DABENCH_TEST_FILE

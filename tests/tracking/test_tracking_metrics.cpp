@@ -13,6 +13,8 @@
 #include "harness/core/special_values.hpp"
 #include "harness/tracking/metrics.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::kNaN;
@@ -295,3 +297,5 @@ TEST_CASE("tracking metrics reject tracks outside the run and bad options") {
   options.ospa_order = 0.5;
   REQUIRE_THROWS_AS(dabench::compute_tracking_metrics(two_targets(), perfect(), options), dabench::InputError);
 }
+
+}  // namespace DABENCH_TEST_FILE

@@ -15,6 +15,8 @@
 #include "algorithms/tracking/ukf.hpp"
 #include "harness/core/random_stream.hpp"
 
+namespace DABENCH_TEST_FILE {
+
 namespace {
 
 using dabench::Gaussian;
@@ -200,3 +202,5 @@ TEST_CASE("ukf: a covariance that is not positive definite is reported with its 
   CHECK(failure_of([&] { dabench::unscented_smoother(filtered, shrinking, {}, 100); }) ==
         "ukf: predicted covariance not positive definite at scan 110");
 }
+
+}  // namespace DABENCH_TEST_FILE
