@@ -59,8 +59,10 @@ def read_run(folder):
     try:
         with open(os.path.join(folder, "meta.json"), encoding="utf-8") as f:
             meta = json.load(f)
-    except (OSError, ValueError) as e:
-        raise CannotCompare(f"{folder}/meta.json: {e}") from e
+    except OSError as e:
+        raise CannotCompare(f"{folder}/meta.json: {e.strerror}") from e
+    except ValueError as e:
+        raise CannotCompare(f"{folder}/meta.json: not JSON ({e})") from e
     header, body = read_csv(os.path.join(folder, "summary.csv"))
     if any(k not in header for k in KEYS):
         raise CannotCompare(f"{folder}/summary.csv is not a dabench summary")
@@ -166,19 +168,20 @@ def compare(run_dir, reference_dir):
         else:
             point, algorithm, column, a, b = differences[0]
             count = f"{len(differences)} {'field differs' if len(differences) == 1 else 'fields differ'}"
-            line = (f"{ours}: NOT the same as the committed run{modified}: {count}, first point {point}, "
-                    f"{algorithm}, {column}: {a} vs {b}")
+            line = (f"{ours}: NOT the same as the committed run: {count}, first point {point}, "
+                    f"{algorithm}, {column}: {a} vs {b}{modified}")
     elif n in recorded:
         rows, sha = trials_digests(run_dir, [n])[n]
         same = (rows, sha) == recorded[n]
-        line = (f"{ours}: {'the same as' if same else f'NOT the same as{modified}'} the committed run's first {n} "
+        line = (f"{ours}: {'the same as' if same else 'NOT the same as'} the committed run's first {n} "
                 f"trials per spacing (its trials.csv, timings aside: {rows} rows, SHA-256 {sha[:12]}…"
-                + ("" if same else f"; the committed run's: {recorded[n][0]} rows, {recorded[n][1][:12]}…") + ")")
+                + (")" if same else f"; the committed run's: {recorded[n][0]} rows, {recorded[n][1][:12]}…){modified}"))
     else:
         same = None
-        counts = ", ".join(str(c) for c in sorted(recorded)) or "none"
-        line = (f"{ours}; not compared with the committed run ({peak_line(reference, big_n)}): it records "
-                f"its first {counts} trials per spacing and all {big_n}, which DABENCH_QUICKSTART_TRIALS can ask for")
+        counts = sorted(recorded) + [big_n]
+        counts = ", ".join(str(c) for c in counts[:-1]) + f" or {counts[-1]}"
+        line = (f"{ours}; not compared with the committed run's {peak_line(reference, big_n)}: a run of "
+                f"{counts} trials per spacing (DABENCH_QUICKSTART_TRIALS) is compared bit for bit")
     algorithms = sorted({a for _, a in reference}, key=lambda a: (a != "bp", a))
     ratios = ", ".join(f"{a} {mean_time(run, a) / mean_time(reference, a):.2f}×" for a in algorithms)
     time_line = (f"this machine: {ratios} the committed run's mean time per trial "
