@@ -19,11 +19,10 @@ export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
 export DABENCH_PROGRESS=0
 
 # Left out of the suite under ASan + UBSan (each still runs in the release build's ctest):
-#  - the reports' checks and the quick start: Python over committed data, and a script that
-#    builds the release program (no C++ of their own to instrument);
+#  - the reports' checks: Python over committed data, no C++ of their own to instrument;
 #  - three tbd-iemb tracking runs (7 min of the 17 that the suite took on 2 cores under ASan;
 #    tbd-iemb's other tests run its code instrumented).
-skip='^reports_|^quickstart$|^tbd-iemb: (pure noise|a new object is reported|one known object is tracked)'
+skip='^reports_|^tbd-iemb: (pure noise|a new object is reported|one known object is tracked)'
 
 asan_build() {
   bash scripts/sanitizer_build.sh build-asan "address;undefined" -DDABENCH_BUILD_FUZZERS=ON
