@@ -21,6 +21,7 @@
 #include "scenarios/multi_scan/bearings.hpp"
 #include "tests/support/free_energy_kkt.hpp"
 #include "tests/support/multi_scan.hpp"
+#include "tests/support/sanitized.hpp"
 
 namespace DABENCH_TEST_FILE {
 
@@ -200,7 +201,7 @@ TEST_CASE("column dual: agrees with Algorithm 2 on small bearings problems", "[b
   // 3 targets, 20 particles per track (+ the truth probe), 4 scans: the paper's factors, with
   // their wide dynamic range (likelihood ratios near e^6 against misses, near-certain associations).
   const std::string pdca_limit = ":solver=pdca,tolerance=1e-12,belief_tolerance=0,max_sweeps=200000";
-  for (std::uint32_t trial = 0; trial < 2; ++trial) {
+  for (std::uint32_t trial = 0; trial < static_cast<std::uint32_t>(dabench::test::sanitized_size(2, 2)); ++trial) {
     const MultiScanProblem problem = bearings_problem(3, 20, 1, trial);
     for (const std::string method : {"cv", "cvs"}) {
       const MultiScanRun reference = run_multi_scan(method + pdca_limit, problem);

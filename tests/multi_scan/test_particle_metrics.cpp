@@ -157,7 +157,7 @@ TEST_CASE("particle metrics: HPD of the truth under the initial bearing posterio
   CHECK(d < ks_critical_5_percent(values.size()));
 }
 
-TEST_CASE("particle metrics: HPD of the truth under the exact single-track posterior is uniform", "[particle_metrics]") {
+TEST_CASE("particle metrics: HPD of the truth under the exact single-track posterior is uniform", "[particle_metrics][release-only]") {
   for (const char* rounds : {"1", "3"}) {
     const auto scenario = scenario_with({{"particles", "10000"}, {"mean_targets", "1"}, {"poisson_targets", "0"},
                                          {"scans_per_sensor", rounds}});

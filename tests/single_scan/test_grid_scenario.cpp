@@ -217,7 +217,7 @@ TEST_CASE("grid: false alarms are Poisson with mean lambda_fa times the gate-cov
   }
 }
 
-TEST_CASE("grid: detection rate is pd and gate misses occur at rate gate_miss", "[grid]") {
+TEST_CASE("grid: detection rate is pd and gate misses occur at rate gate_miss", "[grid][release-only]") {
   SECTION("pd = 0.3, gate_miss = 0.05 on 2x3 targets") {
     const GridScenario grid(options_from({{"pd", "0.3"}, {"gate_miss", "0.05"}}));
     const int draws = 6000, n = 6;

@@ -2,7 +2,9 @@
 // Whether this test program (and the dabench it runs) is built with AddressSanitizer or
 // ThreadSanitizer (scripts/test_sanitizers.sh), which slow the code under test 5–20 times. A
 // system-level test that needs a long run only so that it has something to interrupt sizes the
-// run by it: the same code paths, in a run that lasts about as long as in the release build.
+// run by it: the same code paths, in a run that lasts about as long as in the release build. So
+// does a test that asserts the same thing of each of several instances: every option and branch
+// it covers, on fewer instances.
 namespace dabench::test {
 
 #if defined(__has_feature)

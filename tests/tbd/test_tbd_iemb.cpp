@@ -338,7 +338,7 @@ TEST_CASE("tbd-iemb: information exchange, z_corr and S_corr are sums over the o
   }
 }
 
-TEST_CASE("tbd-iemb: the power measurement's Gaussian moments match simulated frames", "[tbd][tbd_iemb]") {
+TEST_CASE("tbd-iemb: the power measurement's Gaussian moments match simulated frames", "[tbd][tbd_iemb][release-only]") {
   // Own object at a known position x (c_j(x) exact); another Bernoulli, r = 0.6, at N(m, P).
   // Given the objects y_j = ‖z_j‖²/2 is exponential with mean s_j; over the other's existence
   // and position, E y_j = σ² + c_j(x) + z_corr,j and Var y_j = (E y_j)² + 2 S_corr,j
@@ -508,7 +508,7 @@ TEST_CASE("tbd-iemb: a step is its pieces (field of predicted terms, exchange, I
   }
 }
 
-TEST_CASE("tbd-iemb: one known object is tracked for 10 steps near the truth (D1, D2)", "[tbd][tbd_iemb]") {
+TEST_CASE("tbd-iemb: one known object is tracked for 10 steps near the truth (D1, D2)", "[tbd][tbd_iemb][release-only]") {
   // 20 runs of 10 steps, default births on (μ_B = 0.01): the prior's Bernoulli (label 0) must be
   // reported at every step with r > 0.9 and no other estimate (the new Bernoullis see the
   // object explained). Tolerance, from the filter's own covariance: the truth wanders by the
@@ -544,7 +544,7 @@ TEST_CASE("tbd-iemb: one known object is tracked for 10 steps near the truth (D1
   }
 }
 
-TEST_CASE("tbd-iemb: pure noise gives (almost) no estimates", "[tbd][tbd_iemb]") {
+TEST_CASE("tbd-iemb: pure noise gives (almost) no estimates", "[tbd][tbd_iemb][release-only]") {
   // 32 × 32 cells, default μ_B = 0.01, 10 steps; 20 runs for D1, 10 for D2 (its windows are
   // 11 × 11 cells of two rows: 4 times the cost). Bound: under the exact model a new
   // Bernoulli's posterior odds are its prior odds μ_B/J times a likelihood ratio of mean 1
@@ -576,7 +576,7 @@ TEST_CASE("tbd-iemb: pure noise gives (almost) no estimates", "[tbd][tbd_iemb]")
   }
 }
 
-TEST_CASE("tbd-iemb: a new object is reported once, by one Bernoulli, from its first frame", "[tbd][tbd_iemb]") {
+TEST_CASE("tbd-iemb: a new object is reported once, by one Bernoulli, from its first frame", "[tbd][tbd_iemb][release-only]") {
   // No prior: the object (γ = 60, moving 0.18 m per step) lights the new Bernoullis of about
   // 3 × 3 cells; the serial schedule keeps the strongest and the others see the object
   // explained. Every step must report exactly one estimate, always the same Bernoulli, within

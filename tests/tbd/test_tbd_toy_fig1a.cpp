@@ -47,7 +47,7 @@ Eigen::Vector2d belief_of_po1(const dabench::TbdBpOptions& options) {
 }  // namespace
 
 TEST_CASE("tbd toy on the supplement's Fig. 1(a) frame: PO 1's beliefs sit at the peaks of panels (d), (e), (f)",
-          "[tbd][frame][toy]") {
+          "[tbd][frame][toy][release-only]") {
   dabench::TbdBpOptions options;
   options.iterations = 1;
   options.particles = 2000;

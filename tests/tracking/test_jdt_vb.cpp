@@ -16,6 +16,7 @@
 #include "harness/tracking/metrics.hpp"
 #include "harness/tracking/registry.hpp"
 #include "scenarios/tracking/othr.hpp"
+#include "tests/support/sanitized.hpp"
 #include "tests/support/tracker_runs.hpp"
 
 namespace DABENCH_TEST_FILE {
@@ -249,7 +250,7 @@ TEST_CASE("jdt-vb: report_from = head outputs a confirmed track from its head sc
 TEST_CASE("jdt-vb: the free energy never decreases over the VB iterations", "[jdt_vb]") {
   for (const char* spec : {"jdt-vb", "jdt-vb:joint_fusion=0", "jdt-vb:delete_on_mean=1", "jdt-vb:literal=1"}) {
     auto tracker = dabench::make_tracker(spec);
-    for (int run = 0; run < 3; ++run) {
+    for (int run = 0; run < dabench::test::sanitized_size(3, 3); ++run) {
       const auto sample = draw(0.75, 125.0, run);
       dabench::TrackSet tracks;
       dabench::SolveReport report;
@@ -276,7 +277,7 @@ TEST_CASE("jdt-vb: by default Module 1 is rejected only on tracks whose smoother
   // ≤ 10⁻⁷); a wrong smoother, marginal or coupling is rejected by much more.
   const double delta_t = dabench::JdtVbOptions{}.convergence;
   for (auto [pd, clutter] : {std::pair{0.75, 125.0}, std::pair{0.4, 400.0}}) {
-    for (int run = 0; run < 4; ++run) {
+    for (int run = 0; run < dabench::test::sanitized_size(4, 4); ++run) {
       auto tracker = dabench::make_tracker("jdt-vb");
       const auto sample = draw(pd, clutter, run);
       dabench::TrackSet tracks;
@@ -352,7 +353,7 @@ TEST_CASE("jdt-vb: at pd = 0.75 and 125 clutter per scan it tracks as Table IV r
   CHECK(m.mospa_km < 15.0);
 }
 
-TEST_CASE("jdt-vb: the same problem gives identical tracks", "[jdt_vb]") {
+TEST_CASE("jdt-vb: the same problem gives identical tracks", "[jdt_vb][release-only]") {
   auto tracker = dabench::make_tracker("jdt-vb");
   const auto sample = draw(0.4, 400.0, 5);
   dabench::TrackSet first, second;
