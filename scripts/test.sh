@@ -97,7 +97,8 @@ if [ "$fast" = 0 ]; then
 fi
 
 total=$((SECONDS - start))
+printf 'all\ttotal\t%d\t\t0\n' "$total" >> "$logs/steps.tsv"  # for scripts/record_test_timings.py
 echo
 echo "test: steps (wall time; CPU time of the step's processes; the sanitizer builds ran beside the release tests):"
-awk -F'\t' '{ printf "  %-8s %-21s %3d min %2d s   CPU %3d min %2d s\n", $1, $2, $3 / 60, $3 % 60, $4 / 60, $4 % 60 }' "$logs/steps.tsv"
+awk -F'\t' '$1 != "all" { printf "  %-8s %-21s %3d min %2d s   CPU %3d min %2d s\n", $1, $2, $3 / 60, $3 % 60, $4 / 60, $4 % 60 }' "$logs/steps.tsv"
 echo "test: passed in $((total / 60)) min $((total % 60)) s$([ "$fast" = 1 ] && echo " (--fast: no sanitizers, MPI, fault or install scripts)" || true)"

@@ -22,6 +22,9 @@ MPI = "mpirun --allow-run-as-root"
 PAIRS = ["a", "b"]
 FUZZ_LONG_RUNS = "fuzz/long-runs.csv"  # written by FUZZ_RECORD=fuzz/long-runs.csv scripts/fuzz.sh SECONDS
 FUZZ_TARGETS = ["experiment", "weights", "shard_meta", "spec"]  # fuzz/CMakeLists.txt
+TEST_STEPS = "tests/timings/steps.csv"  # written by scripts/record_test_timings.py after scripts/test.sh
+TEST_CASES = "tests/timings/cases.csv"
+TEST_RUN_ORDER = ["before", "cold", "warm", "fast"]  # the README's columns; other labels follow
 
 RUNS = [Run(QUICKSTART, "./build/dabench run experiments/quickstart.ini --out results/quickstart --force",
             "the quick start's reference run")]
@@ -217,6 +220,60 @@ def fuzz_long_runs(report):
         + (f"\n\nNo long run without a finding is recorded yet for {', '.join(missing)}." if missing else ""))
 
 
+def minutes(seconds):
+    """"7:12" (min:s)."""
+    seconds = round(seconds)
+    return f"{seconds // 60}:{seconds % 60:02d}"
+
+
+def test_timings(report):
+    """`scripts/test.sh`'s recorded runs (scripts/record_test_timings.py): one table of every step's
+    wall time (and its processes' CPU time) per run, and the ten slowest ctest entries per build."""
+    steps = data.read_rows(report.root, TEST_STEPS)
+    def order(run):
+        return TEST_RUN_ORDER.index(run) if run in TEST_RUN_ORDER else len(TEST_RUN_ORDER)
+    runs = sorted(dict.fromkeys(r["run"] for r in steps), key=order)
+    keys = list(dict.fromkeys((r["build"], r["step"]) for r in steps))
+    keys.sort(key=lambda k: k == ("all", "total"))
+    by = {(r["run"], r["build"], r["step"]): r for r in steps}
+    rows = []
+    for build, step in keys:
+        row = ["**total**" if step == "total" else step if build == step else f"{build} {step.replace('_', ' ')}"]
+        for run in runs:
+            r = by.get((run, build, step))
+            if r is None:
+                row.append("–")
+                continue
+            cell = minutes(data.num(r, "wall_s"))
+            cpu = data.num(r, "cpu_s")
+            row.append(f"**{cell}**" if step == "total" else cell + (f" ({minutes(cpu)})" if cpu is not None else ""))
+        rows.append(row)
+    first = {run: next(r for r in steps if r["run"] == run) for run in runs}
+    header = ["step"] + [f"{run}<br>`{first[run]['commit']}`, {first[run]['cores']} cores" for run in runs]
+    report.value("tests.steps", markdown.table(header, rows, "l" + "r" * len(runs)))
+    cases = data.read_rows(report.root, TEST_CASES)
+    case_runs = sorted(dict.fromkeys(r["run"] for r in cases), key=order)
+    for build in ("release", "asan"):
+        seconds = {(r["run"], r["case"]): data.num(r, "seconds") for r in cases if r["build"] == build}
+        shown = [run for run in case_runs if any(key[0] == run for key in seconds)]
+        names = sorted({c for _, c in seconds}, key=lambda c: -max(v for (_, n), v in seconds.items() if n == c))
+        table = [[name] + [f"{seconds[(run, name)]:.1f}" if (run, name) in seconds else "–" for run in shown]
+                 for name in names]
+        report.value(f"tests.cases.{build}", markdown.table(["case"] + [f"{run} (s)" for run in shown], table,
+                                                            "l" + "r" * len(shown)))
+    cold = next((run for run in runs if run.startswith("cold")), None)
+    if cold is None:
+        report.value("tests.cold_compile", f"no cold run is recorded yet (`{TEST_STEPS}`)")
+        return
+    builds = [r for r in steps if r["run"] == cold and r["step"] == "build"]
+    cpu = sum(data.num(r, "cpu_s") for r in builds)
+    cores = int(first[cold]["cores"])
+    report.value("tests.cold_compile", f"its builds took {minutes(cpu)} of CPU time ("
+                 + ", ".join(f"{r['build']} {minutes(data.num(r, 'cpu_s'))}" for r in builds)
+                 + f"), at least {minutes(cpu / cores)} of wall time on {cores} cores, against "
+                 f"{minutes(data.num(by[(cold, 'all', 'total')], 'wall_s'))} for the whole run")
+
+
 def span(seconds):
     """A duration from microseconds to hours: "85 µs", "3.1 ms", "42 s", "12.7 min", "1.6 h"."""
     if seconds < 1e-3:
@@ -289,6 +346,7 @@ def checks(report):
     cluster(report)
     study_wall_times(report)
     fuzz_long_runs(report)
+    test_timings(report)
 
 
 STUDY = Study(name="readme", report="README.md", template="reports/templates/README.md", runs=RUNS, steps=STEPS,
