@@ -249,6 +249,11 @@ def test_timings(report):
             row.append(f"**{cell}**" if step == "total" else cell + (f" ({minutes(cpu)})" if cpu is not None else ""))
         rows.append(row)
     first = {run: next(r for r in steps if r["run"] == run) for run in runs}
+    floor = ["CPU of every step ÷ cores"]  # no schedule of these steps on these cores is shorter
+    for run in runs:
+        cpus = [data.num(r, "cpu_s") for r in steps if r["run"] == run and r["step"] != "total"]
+        floor.append("–" if None in cpus else minutes(sum(cpus) / int(first[run]["cores"])))
+    rows.append(floor)
     header = ["step"] + [f"{run}<br>`{first[run]['commit']}`, {first[run]['cores']} cores" for run in runs]
     report.value("tests.steps", markdown.table(header, rows, "l" + "r" * len(runs)))
     cases = data.read_rows(report.root, TEST_CASES)
@@ -261,6 +266,12 @@ def test_timings(report):
                  for name in names]
         report.value(f"tests.cases.{build}", markdown.table(["case"] + [f"{run} (s)" for run in shown], table,
                                                             "l" + "r" * len(shown)))
+    if "warm" in runs:
+        warm = {r["step"]: data.num(r, "cpu_s") for r in steps if r["run"] == "warm" and r["build"] == "asan"}
+        total = sum(data.num(r, "cpu_s") for r in steps if r["run"] == "warm" and r["step"] != "total")
+        report.value("tests.warm_asan_share", markdown.percent((warm["ctest"] + warm["fuzz"]) / total, 0))
+    else:
+        report.value("tests.warm_asan_share", "(no warm run recorded)")
     cold = next((run for run in runs if run.startswith("cold")), None)
     if cold is None:
         report.value("tests.cold_compile", f"no cold run is recorded yet (`{TEST_STEPS}`)")
