@@ -230,6 +230,7 @@ def test_timings(report):
     """`scripts/test.sh`'s recorded runs (scripts/record_test_timings.py): one table of every step's
     wall time (and its processes' CPU time) per run, and the ten slowest ctest entries per build."""
     steps = data.read_rows(report.root, TEST_STEPS)
+
     def order(run):
         return TEST_RUN_ORDER.index(run) if run in TEST_RUN_ORDER else len(TEST_RUN_ORDER)
     runs = sorted(dict.fromkeys(r["run"] for r in steps), key=order)
