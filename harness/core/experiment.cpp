@@ -107,18 +107,42 @@ void expand_block(const SweepBlock& block, const std::vector<KeyValue>& fixed, c
 
 namespace {
 
-// Boost's parser names a bad line by its text only; find it first to report its number.
-void check_ini_lines(const std::string& path, const std::string& text) {
+// Boost's parser names a bad line by its text only, and keeps the last of a repeated key or
+// section without a word: scan the lines first, so that a bad line, a key set twice and a section
+// opened twice are each one error with its line numbers. Returns the line of each key (as Boost
+// names it: "section.key").
+std::map<std::string, int> check_ini_lines(const std::string& path, const std::string& text) {
+  std::map<std::string, int> line_of_key;
+  std::map<std::string, int> line_of_section;
+  std::string section;
   std::istringstream lines(text);
   std::string line;
   int number = 0;
   while (std::getline(lines, line)) {
     ++number;
     const std::string_view content = trim(std::string_view(line).substr(0, line.find('#')));
-    if (content.empty() || content.find('=') != std::string_view::npos) continue;
-    if (content.front() == '[' && content.back() == ']') continue;
-    throw InputError(fmt::format("{}:{}: '{}' is not 'key = value' or a [section]", path, number, content));
+    if (content.empty()) continue;
+    if (content.find('=') == std::string_view::npos) {
+      if (content.front() != '[' || content.back() != ']') {
+        throw InputError(fmt::format("{}:{}: '{}' is not 'key = value' or a [section]", path, number, content));
+      }
+      section = std::string(trim(content.substr(1, content.size() - 2)));
+      const auto [it, inserted] = line_of_section.try_emplace(section, number);
+      if (!inserted) {
+        throw InputError(fmt::format("{}:{}: section [{}] is opened again (first at line {})", path, number, section,
+                                     it->second));
+      }
+      continue;
+    }
+    const std::string key = std::string(trim(content.substr(0, content.find('='))));
+    const std::string full_key = section.empty() ? key : section + "." + key;
+    const auto [it, inserted] = line_of_key.try_emplace(full_key, number);
+    const bool repeatable = full_key == "algorithm" || full_key == "reference";  // one line per SPEC
+    if (!inserted && !repeatable) {
+      throw InputError(fmt::format("{}:{}: '{}' is set again (first at line {})", path, number, full_key, it->second));
+    }
   }
+  return line_of_key;
 }
 
 }  // namespace
@@ -133,7 +157,7 @@ Experiment parse_experiment(const std::string& path, std::string text) {
   experiment.text = std::move(text);
   experiment.name = std::filesystem::path(path).stem().string();
 
-  check_ini_lines(path, experiment.text);
+  const std::map<std::string, int> line_of_key = check_ini_lines(path, experiment.text);
   po::parsed_options parsed(nullptr);
   try {
     std::istringstream stream(experiment.text);
@@ -174,6 +198,17 @@ Experiment parse_experiment(const std::string& path, std::string text) {
           block.axes.emplace_back(param, expand_sweep_values(value));
         } catch (const InputError& error) {
           throw bad(error.what());
+        }
+        std::map<std::string_view, std::size_t> first_index;  // a value twice is the same point twice
+        const std::vector<std::string>& values = block.axes.back().second;
+        for (std::size_t i = 0; i < values.size(); ++i) {
+          const auto [it, inserted] = first_index.try_emplace(values[i], i);
+          if (!inserted) {
+            const auto line = line_of_key.find(key);
+            throw InputError(fmt::format("{}{}: '{}' sweeps the value {} twice (its values {} and {})", path,
+                                         line == line_of_key.end() ? "" : fmt::format(":{}", line->second), key,
+                                         values[i], it->second + 1, i + 1));
+          }
         }
       }
       continue;

@@ -69,15 +69,19 @@ TEST_CASE("cli run: bad experiment files are rejected before any output", "[cli]
     expect_error(dir, {"run", "e.ini"}, {"e.ini", "scenario"});
   }
   SECTION("unknown scenario parameter in [scenario]") {
-    dir.write("e.ini", experiment_with("", "[scenario]\nwidth = 3\n"));
+    dir.write("e.ini", experiment_in("scenario", "width = 3\n"));
     expect_error(dir, {"run", "e.ini"}, {"e.ini", "width"});
   }
   SECTION("unknown scenario parameter in [sweep]") {
-    dir.write("e.ini", experiment_with("", "[sweep]\nheight = 1,2\n"));
+    dir.write("e.ini", experiment_in("sweep", "height = 1,2\n"));
     expect_error(dir, {"run", "e.ini"}, {"e.ini", "height"});
   }
+  SECTION("a section opened twice") {
+    dir.write("e.ini", experiment_with("", "[scenario]\npd = 0.5\n"));
+    expect_error(dir, {"run", "e.ini"}, {"e.ini:12", "[scenario]", "first at line 7"});
+  }
   SECTION("pd out of range") {
-    dir.write("e.ini", experiment_with("", "[scenario]\npd = 1.2\n"));
+    dir.write("e.ini", experiment_in("scenario", "pd = 1.2\n"));
     expect_error(dir, {"run", "e.ini"}, {"e.ini", "pd", "1.2"});
   }
   SECTION("negative spacing in a sweep") {
@@ -85,11 +89,13 @@ TEST_CASE("cli run: bad experiment files are rejected before any output", "[cli]
     expect_error(dir, {"run", "e.ini"}, {"e.ini", "spacing", "-1"});
   }
   SECTION("rows = 0") {
-    dir.write("e.ini", experiment_with("", "[scenario]\nrows = 0\n"));
+    std::string text = kGoodExperiment;
+    text.replace(text.find("rows = 1"), 8, "rows = 0");
+    dir.write("e.ini", text);
     expect_error(dir, {"run", "e.ini"}, {"e.ini", "rows"});
   }
   SECTION("non-numeric scenario value") {
-    dir.write("e.ini", experiment_with("", "[scenario]\nlambda_fa = lots\n"));
+    dir.write("e.ini", experiment_in("scenario", "lambda_fa = lots\n"));
     expect_error(dir, {"run", "e.ini"}, {"e.ini", "lambda_fa", "lots"});
   }
   SECTION("trials = 0") {

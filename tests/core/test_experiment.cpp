@@ -200,6 +200,28 @@ TEST_CASE("experiment: ties copy the swept value point by point", "[experiment]"
   CHECK(e.swept_keys == Strings{"rows", "spacing"});  // a tie is not a sweep axis
 }
 
+TEST_CASE("experiment: a repeated key, section or sweep value is one error with its line numbers", "[experiment]") {
+  // Boost's parser keeps the last of each without a word (issue 47): 82 points instead of 41.
+  const auto message = [](const std::string& text) {
+    return input_error_message([&] { parse_experiment("dup.ini", text); });
+  };
+  CHECK(message("scenario = grid\ntrials = 4\nalgorithm = bp\ntrials = 5\n") ==
+        "dup.ini:4: 'trials' is set again (first at line 2)");
+  CHECK(message("scenario = grid\ntrials = 4\nalgorithm = bp\n[scenario]\npd = 0.5\n\npd = 0.6\n") ==
+        "dup.ini:7: 'scenario.pd' is set again (first at line 5)");
+  CHECK(message("scenario = grid\ntrials = 4\nalgorithm = bp\n[scenario]\npd = 0.5\n[sweep]\nspacing = 1\n[scenario]\n") ==
+        "dup.ini:8: section [scenario] is opened again (first at line 4)");
+  CHECK(message("scenario = grid\ntrials = 4\nalgorithm = bp\n[sweep]\nspacing = 1:1:2\nspacing = 1:1:2\n") ==
+        "dup.ini:6: 'sweep.spacing' is set again (first at line 5)");
+  CHECK(message("scenario = grid\ntrials = 4\nalgorithm = bp\n[sweep]\nspacing = 0, 0.5, 1, 0.5\n") ==
+        "dup.ini:5: 'sweep.spacing' sweeps the value 0.5 twice (its values 2 and 4)");
+  // algorithm and reference take one SPEC per line; the same value in two blocks is two points.
+  const Experiment e = parse_experiment("ok.ini", "scenario = grid\ntrials = 4\nalgorithm = bp\nalgorithm = exact\n"
+                                                  "[sweep]\nspacing = 1, 2\n[sweep.more]\nspacing = 1, 2\n");
+  CHECK(e.algorithms == Strings{"bp", "exact"});
+  CHECK(e.points.size() == 4);
+}
+
 TEST_CASE("experiment: errors throw InputError naming the file", "[experiment]") {
   TempDir dir;
   const fs::path path = dir.work() / "bad_experiment.ini";

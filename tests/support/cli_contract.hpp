@@ -73,4 +73,13 @@ inline std::string experiment_with(const std::string& top, const std::string& ta
   return text + tail;
 }
 
+// kGoodExperiment with `lines` added at the start of its [scenario] or [sweep] section (a section
+// opened twice is an error of its own).
+inline std::string experiment_in(const std::string& section, const std::string& lines) {
+  std::string text = kGoodExperiment;
+  const std::string header = "[" + section + "]\n";
+  text.insert(text.find(header) + header.size(), lines);
+  return text;
+}
+
 }  // namespace dabench::test::cli
