@@ -62,7 +62,27 @@ namespace {
 struct SweepBlock {
   std::vector<std::pair<std::string, std::vector<std::string>>> axes;  // in file order
   std::vector<std::pair<std::string, std::string>> ties;               // key ← other key
+  std::vector<std::string> axis_keys;                                  // each axis' key, "sweep.NAME.key"
 };
+
+// A value twice in one axis is the same point twice: an error naming the key's line and both
+// positions. (Run after the sweep's size is checked: an axis then has at most kMaxSweepPoints values.)
+void check_distinct_values(const SweepBlock& block, const std::map<std::string, int>& line_of_key,
+                           const std::string& path) {
+  for (std::size_t a = 0; a < block.axes.size(); ++a) {
+    const std::string& key = block.axis_keys[a];
+    const std::vector<std::string>& values = block.axes[a].second;
+    std::map<std::string_view, std::size_t> first_index;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const auto [it, inserted] = first_index.try_emplace(values[i], i);
+      if (inserted) continue;
+      const auto line = line_of_key.find(key);
+      throw InputError(fmt::format("{}{}: '{}' sweeps the value {} twice (its values {} and {})", path,
+                                   line == line_of_key.end() ? "" : fmt::format(":{}", line->second), key, values[i],
+                                   it->second + 1, i + 1));
+    }
+  }
+}
 
 void set_value(std::vector<KeyValue>& settings, const std::string& key, const std::string& value) {
   for (KeyValue& kv : settings) {
@@ -199,17 +219,7 @@ Experiment parse_experiment(const std::string& path, std::string text) {
         } catch (const InputError& error) {
           throw bad(error.what());
         }
-        std::map<std::string_view, std::size_t> first_index;  // a value twice is the same point twice
-        const std::vector<std::string>& values = block.axes.back().second;
-        for (std::size_t i = 0; i < values.size(); ++i) {
-          const auto [it, inserted] = first_index.try_emplace(values[i], i);
-          if (!inserted) {
-            const auto line = line_of_key.find(key);
-            throw InputError(fmt::format("{}{}: '{}' sweeps the value {} twice (its values {} and {})", path,
-                                         line == line_of_key.end() ? "" : fmt::format(":{}", line->second), key,
-                                         values[i], it->second + 1, i + 1));
-          }
-        }
+        block.axis_keys.push_back(key);
       }
       continue;
     }
@@ -271,6 +281,7 @@ Experiment parse_experiment(const std::string& path, std::string text) {
     throw InputError(fmt::format("{}: the sweep has {:.3g} points, more than {:.0f}", path, points, kMaxSweepPoints));
   }
   for (const SweepBlock& block : blocks) {
+    check_distinct_values(block, line_of_key, path);
     for (const auto& axis : block.axes) {
       bool known = false;
       for (const auto& key : experiment.swept_keys) known = known || key == axis.first;
