@@ -1,6 +1,11 @@
 #include "apps/cli.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -28,6 +33,7 @@
 #include "harness/run/library.hpp"
 #include "harness/run/mpi_transport.hpp"
 #include "harness/run/paired_comparison.hpp"
+#include "harness/run/run_meta.hpp"
 #include "harness/run/runner.hpp"
 #include "harness/run/schedule_simulation.hpp"
 #include "harness/run/shard_merge.hpp"
@@ -44,6 +50,29 @@ namespace po = boost::program_options;
 namespace fs = std::filesystem;
 
 namespace {
+
+// Writes `text` to stdout and flushes it: a failed write (a full disk, a closed pipe or
+// stdout) is a WriteError, exit status 1.
+void print_stdout(const std::string& text) {
+  errno = 0;
+  if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0) {
+    throw WriteError(fmt::format("standard output: write failed ({})", std::strerror(errno != 0 ? errno : EIO)));
+  }
+}
+
+// A standard stream the caller closed (`>&-`) is opened on /dev/null the wrong way round (read
+// only for stdout and stderr): writes to it fail, as they should, and no result file opened
+// later can take its descriptor and receive what was meant for the terminal.
+void hold_closed_standard_streams() {
+  for (const int fd : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO}) {
+    if (fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    const int opened = open("/dev/null", fd == STDIN_FILENO ? O_WRONLY : O_RDONLY);
+    if (opened >= 0 && opened != fd) {
+      dup2(opened, fd);
+      close(opened);
+    }
+  }
+}
 
 // Each subcommand's synopsis and what it does; `dabench --help` lists the synopses and
 // `dabench COMMAND --help` adds the description and the options.
@@ -148,7 +177,7 @@ std::optional<po::variables_map> parse_command(const std::string& command, const
     if (values.count("help")) {
       std::ostringstream text;
       text << "usage: " << usage.synopsis << "\n" << usage.description << "\n" << options;
-      std::fputs(text.str().c_str(), stdout);
+      print_stdout(text.str());
       return std::nullopt;
     }
     po::notify(values);
@@ -222,7 +251,7 @@ int command_list(int argc, char** argv) {
     }
     out += fmt::format("  {:<28} {}\n", file.filename().string(), description);
   }
-  std::fputs(out.c_str(), stdout);
+  print_stdout(out);
   return 0;
 }
 
@@ -304,7 +333,7 @@ int command_solve(int argc, char** argv) {
     return 3;
   }
   if (time) {
-    std::fputs(timing_report(spec, format, *solver, problem, timing).c_str(), stdout);
+    print_stdout(timing_report(spec, format, *solver, problem, timing));
     return 0;
   }
   std::string out;
@@ -333,7 +362,7 @@ int command_solve(int argc, char** argv) {
     json.add_raw("marginals", rows);
     out = json.str();
   }
-  std::fputs(out.c_str(), stdout);
+  print_stdout(out);
   return 0;
 }
 
@@ -389,7 +418,7 @@ int command_run_options(int argc, char** argv, const std::string& command_line, 
   if (mpi != nullptr) resume_line = fmt::format("mpirun -np {} {}", mpi->size(), resume_line);
   if (!outcome.write_error.empty()) {
     std::fprintf(stderr, "dabench: %s after %lld of %lld trials (whole rows kept); free space, then finish with: %s\n",
-                 printable(outcome.write_error).c_str(), outcome.items_written, outcome.items_total, resume_line.c_str());
+                 printable_line(outcome.write_error).c_str(), outcome.items_written, outcome.items_total, resume_line.c_str());
     return 1;
   }
   if (outcome.interrupted) {
@@ -400,7 +429,7 @@ int command_run_options(int argc, char** argv, const std::string& command_line, 
   std::string files = "trials.csv";
   for (const std::string& file : outcome.item_files) files += ", " + file;
   std::fprintf(stderr, "dabench: %lld trials done; results in %s/ (%s, summary.csv, meta.json)\n",
-               outcome.items_total, outcome.output.c_str(), files.c_str());
+               outcome.items_total, printable_line(outcome.output).c_str(), files.c_str());
   return 0;
 }
 
@@ -430,7 +459,8 @@ int command_merge(int argc, char** argv, const std::string& command_line) {
   options.add_options()
       ("output", po::value(&merge.output), "folder of the merged run")
       ("shards", po::value(&merge.shards)->multitoken(), "the shard folders")
-      ("force", po::bool_switch(&merge.force), "replace a run in the output folder");
+      ("force", po::bool_switch(&merge.force), "replace a run in the output folder")
+      ("allow-mixed", po::bool_switch(&merge.allow_mixed), "merge shards written by different builds (recorded in meta.json)");
   po::positional_options_description positional;
   positional.add("output", 1).add("shards", -1);
   if (!parse_command("merge", kMergeUsage, options, positional, argc, argv)) return 0;
@@ -439,7 +469,7 @@ int command_merge(int argc, char** argv, const std::string& command_line) {
   std::string files = "trials.csv";
   for (const std::string& file : outcome.item_files) files += ", " + file;
   std::fprintf(stderr, "dabench: merged %d shards, %lld trials; results in %s/ (%s, summary.csv, meta.json)\n",
-               outcome.shards, outcome.items, merge.output.c_str(), files.c_str());
+               outcome.shards, outcome.items, printable_line(merge.output).c_str(), files.c_str());
   return 0;
 }
 
@@ -485,6 +515,7 @@ int command_schedule(int argc, char** argv) {
   if (format != "table" && format != "csv") throw InputError(fmt::format("schedule: --format must be table or csv, not '{}'", format));
   const std::vector<long long> workers = parse_workers(workers_text);
   if (parsed->count("trials") && trials < 1) throw InputError(fmt::format("schedule: --trials {} must be >= 1", trials));
+  require_complete_run(folder, "schedule");
   const RunCosts costs = read_run_costs(folder, trials);
   const double total = std::accumulate(costs.unit_seconds.begin(), costs.unit_seconds.end(), 0.0);
   const double longest = *std::max_element(costs.unit_seconds.begin(), costs.unit_seconds.end());
@@ -514,7 +545,7 @@ int command_schedule(int argc, char** argv) {
                          blocks.work_fraction, known.wall_seconds);
     }
   }
-  std::fputs(out.c_str(), stdout);
+  print_stdout(out);
   return 0;
 }
 
@@ -549,13 +580,14 @@ int command_compare(int argc, char** argv) {
   }
   if (parsed->count("metric")) compare.metrics = comma_list(metrics, "compare", "--metric");
   const Comparison comparison = compare_runs(compare);
-  std::fputs((format == "csv" ? comparison_csv(comparison) : comparison_table(comparison)).c_str(), stdout);
+  print_stdout((format == "csv" ? comparison_csv(comparison) : comparison_table(comparison)));
   return 0;
 }
 
 }  // namespace
 
 int cli_main(int argc, char** argv) {
+  hold_closed_standard_streams();
   retain_freed_heap_memory();
   const std::string command = argc > 1 ? argv[1] : "";
   try {
@@ -569,21 +601,30 @@ int cli_main(int argc, char** argv) {
     if (command == "compare") return command_compare(argc - 1, argv + 1);
     if (command == "-h" || command == "--help" || command == "help") {
       if (argc > 2) throw InputError(fmt::format("{}: unexpected argument '{}' (for a command's usage: dabench COMMAND --help)", command, argv[2]));
-      std::fputs(program_usage().c_str(), stdout);
+      print_stdout(program_usage());
       return 0;
     }
     if (command == "--version") {
       if (argc > 2) throw InputError(fmt::format("--version: unexpected argument '{}'", argv[2]));
-      std::fputs(version_line().c_str(), stdout);
+      print_stdout(version_line());
       return 0;
     }
     throw InputError(command.empty() ? "missing command (list, solve, run, merge, schedule or compare; see dabench --help)"
                                      : fmt::format("unknown command '{}' (list, solve, run, merge, schedule or compare; see dabench --help)", command));
+  } catch (const WriteError& error) {  // README: exit 1 when a write fails
+    std::fprintf(stderr, "dabench: %s\n", printable_line(error.what()).c_str());
+    return 1;
   } catch (const InputError& error) {
-    std::fprintf(stderr, "dabench: %s\n", printable(error.what()).c_str());
+    std::fprintf(stderr, "dabench: %s\n", printable_line(error.what()).c_str());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& error) {
+    // The system's refusal of a path (too long, not a folder, ...): the path and the reason,
+    // not the library's "filesystem error: ..." wording.
+    std::fprintf(stderr, "dabench: %s\n",
+                 printable_line(fmt::format("{}: {}", error.path1().string(), error.code().message())).c_str());
     return 2;
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "dabench: internal error: %s\n", printable(error.what()).c_str());
+    std::fprintf(stderr, "dabench: internal error: %s\n", printable_line(error.what()).c_str());
     return 1;
   }
 }

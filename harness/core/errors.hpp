@@ -8,7 +8,14 @@ namespace dabench {
 
 class InputError : public std::runtime_error {
  public:
-  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+  // A NUL byte (quoted from a binary input) is written \x00: what() is a C string.
+  explicit InputError(const std::string& message) : std::runtime_error(without_nul(message)) {}
+
+ private:
+  static std::string without_nul(std::string text) {
+    for (std::size_t at = text.find('\0'); at != std::string::npos; at = text.find('\0', at)) text.replace(at, 1, "\\x00");
+    return text;
+  }
 };
 
 // A result file could not be written (disk full, I/O error): what was already written stays.

@@ -174,6 +174,8 @@ Experiment load_experiment(const std::string& path) {
 Experiment parse_experiment(const std::string& path, std::string text) {
   Experiment experiment;
   experiment.path = path;
+  // A UTF-8 byte order mark (which some Windows editors write) is not part of the first key.
+  if (text.starts_with("\xEF\xBB\xBF")) text.erase(0, 3);
   experiment.text = std::move(text);
   experiment.name = std::filesystem::path(path).stem().string();
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "harness/core/errors.hpp"
+#include "harness/core/utf8.hpp"
 
 namespace dabench {
 
@@ -38,30 +39,6 @@ std::string read_input_file(const std::string& path, std::string_view what, std:
   return text;
 }
 
-namespace {
-
-// Length of the well-formed UTF-8 sequence at text[at] (RFC 3629: no overlongs, no surrogates,
-// at most U+10FFFF), or 0.
-std::size_t utf8_length(std::string_view text, std::size_t at) {
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[at + k]); };
-  const unsigned char lead = byte(0);
-  const std::size_t length = lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
-                             : lead >= 0xF0 && lead <= 0xF4 ? 4 : 0;
-  if (length == 0) return 0;
-  // The second byte's range (the rest are 0x80..0xBF): E0 and F0 exclude overlongs, ED the
-  // surrogates, F4 what lies beyond U+10FFFF.
-  const unsigned char low = lead == 0xE0 ? 0xA0 : lead == 0xF0 ? 0x90 : 0x80;
-  const unsigned char high = lead == 0xED ? 0x9F : lead == 0xF4 ? 0x8F : 0xBF;
-  if (at + length > text.size()) return 0;
-  if (byte(1) < low || byte(1) > high) return 0;
-  for (std::size_t k = 2; k < length; ++k) {
-    if (byte(k) < 0x80 || byte(k) > 0xBF) return 0;
-  }
-  return length;
-}
-
-}  // namespace
-
 std::string printable(std::string_view text) {
   std::string out;
   out.reserve(text.size());
@@ -82,6 +59,16 @@ std::string printable(std::string_view text) {
     ++at;
   }
   return out;
+}
+
+std::string printable_line(std::string_view text, std::size_t max_bytes) {
+  const std::string line = printable(text);
+  if (line.size() <= max_bytes) return line;
+  const auto continuation = [&line](std::size_t at) { return (static_cast<unsigned char>(line[at]) & 0xC0) == 0x80; };
+  std::size_t head = max_bytes / 2 - 3, tail = line.size() - (max_bytes / 2 - 3);
+  while (head > 0 && continuation(head)) --head;  // cut between characters, never inside one
+  while (tail < line.size() && continuation(tail)) ++tail;
+  return line.substr(0, head) + " ... " + line.substr(tail);
 }
 
 }  // namespace dabench

@@ -24,4 +24,8 @@ std::string read_input_file(const std::string& path, std::string_view what, std:
 // valid UTF-8 (γ, é) is kept.
 std::string printable(std::string_view text);
 
+// printable(text), and when that is longer than `max_bytes` its first and last parts joined by
+// " ... " (a 4 KiB path keeps its start and the system's reason at the end of the message).
+std::string printable_line(std::string_view text, std::size_t max_bytes = 600);
+
 }  // namespace dabench

@@ -5,11 +5,27 @@
 
 #include <fmt/format.h>
 
+#include "harness/core/utf8.hpp"
+
 namespace dabench {
 
+// Bytes that are not UTF-8 (a path in another encoding) become U+FFFD: JSON text is Unicode.
 std::string JsonObject::quote(std::string_view text) {
   std::string out = "\"";
-  for (const char c : text) {
+  for (std::size_t at = 0; at < text.size();) {
+    const char c = text[at];
+    const std::size_t length = static_cast<unsigned char>(c) < 0x80 ? 1 : utf8_length(text, at);
+    if (length == 0) {
+      out += "\\ufffd";
+      ++at;
+      continue;
+    }
+    if (length > 1) {
+      out.append(text.substr(at, length));
+      at += length;
+      continue;
+    }
+    ++at;
     switch (c) {
       case '"': out += "\\\""; break;
       case '\\': out += "\\\\"; break;
@@ -84,13 +100,22 @@ std::optional<std::string> json_value(std::string_view json, std::string_view ke
       case 't': text += '\t'; break;
       case 'b': text += '\b'; break;
       case 'f': text += '\f'; break;
-      case 'u': {  // JsonObject escapes only control characters this way
+      case 'u': {  // JsonObject writes control characters and U+FFFD (for bytes not UTF-8) this way
         if (k + 4 >= json.size()) return std::nullopt;
         const std::string hex(json.substr(k + 1, 4));
         char* end = nullptr;
         const long code = std::strtol(hex.c_str(), &end, 16);
-        if (end != hex.c_str() + 4 || code > 0x7f) return std::nullopt;
-        text += static_cast<char>(code);
+        if (end != hex.c_str() + 4 || (code >= 0xD800 && code <= 0xDFFF)) return std::nullopt;
+        if (code < 0x80) {
+          text += static_cast<char>(code);
+        } else if (code < 0x800) {
+          text += static_cast<char>(0xC0 | (code >> 6));
+          text += static_cast<char>(0x80 | (code & 0x3F));
+        } else {
+          text += static_cast<char>(0xE0 | (code >> 12));
+          text += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
+          text += static_cast<char>(0x80 | (code & 0x3F));
+        }
         k += 4;
         break;
       }

@@ -17,6 +17,7 @@
 #include "harness/core/errors.hpp"
 #include "harness/core/input_file.hpp"
 #include "harness/core/json.hpp"
+#include "harness/run/run_meta.hpp"
 
 namespace dabench {
 namespace {
@@ -252,6 +253,8 @@ Comparison compare_runs(const CompareOptions& options) {
     throw InputError(two_runs ? "compare: two runs compare one algorithm: --algorithms A"
                               : "compare: one run compares two algorithms: --algorithms A,B");
   }
+  require_complete_run(options.run_a, "compare");
+  if (two_runs) require_complete_run(options.run_b, "compare");
   std::vector<std::string> metrics = options.metrics;
   Comparison comparison;
   RunTable a = read_run(options.run_a, options.algorithms, metrics);

@@ -3,14 +3,29 @@
 #include <unistd.h>
 
 #include <ctime>
+#include <filesystem>
+
+#include <fmt/format.h>
 
 #include "harness/core/build_info.hpp"
+#include "harness/core/errors.hpp"
+#include "harness/core/input_file.hpp"
 #include "harness/core/json.hpp"
 #include "harness/core/params.hpp"
 #include "harness/run/tbd_execution.hpp"
 #include "harness/run/tracking_execution.hpp"
 
 namespace dabench {
+
+void require_complete_run(const std::string& folder, std::string_view command) {
+  const std::string path = (std::filesystem::path(folder) / "meta.json").string();
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return;
+  const auto status = json_value(read_input_file(path, "run meta.json", kMaxMetaBytes), "status");
+  if (!status || *status == "complete") return;  // (a meta.json written by hand may say nothing)
+  throw InputError(fmt::format("{}: {}: the run is {} (meta.json), not complete; finish it with `dabench run ... --resume` "
+                               "first", command, folder, *status == "running" ? "still running, or was killed" : *status));
+}
 
 std::string utc_now() {
   const std::time_t now = std::time(nullptr);
@@ -26,8 +41,28 @@ std::string host_name() {
   return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string("unknown");
 }
 
-std::string run_meta_json(const RunPlan& plan, const RunRecord& record) {
+RecordedBuild this_build() {
   const BuildInfo& build = build_info();
+  RecordedBuild recorded;
+  recorded.version = build.version;
+  recorded.git_commit = build.git_commit;
+  recorded.source_modified = build.source == Provenance::unknown    ? "null"
+                             : build.source == Provenance::modified ? "true"
+                                                                    : "false";
+  recorded.compiler = build.compiler;
+  recorded.flags = build.flags;
+  recorded.build_type = build.build_type;
+  return recorded;
+}
+
+std::string RecordedBuild::describe() const {
+  const char* modified = source_modified == "true" ? ", modified source" : "";
+  return fmt::format("dabench {} (git {}{}), {} {} {}", version, git_commit.substr(0, 12), modified, compiler, flags,
+                     build_type);
+}
+
+std::string run_meta_json(const RunPlan& plan, const RunRecord& record) {
+  const RecordedBuild build = record.build.value_or(this_build());
   const auto json_list = [](auto begin, auto end) {
     std::string list = "[";
     for (auto it = begin; it != end; ++it) list += (it == begin ? "" : ", ") + JsonObject::quote(*it);
@@ -54,9 +89,7 @@ std::string run_meta_json(const RunPlan& plan, const RunRecord& record) {
       .add_raw("references", references)
       .add("version", build.version)
       .add("git_commit", build.git_commit)
-      .add_raw("source_modified", build.source == Provenance::unknown    ? "null"
-                                  : build.source == Provenance::modified ? "true"
-                                                                         : "false")
+      .add_raw("source_modified", build.source_modified)
       .add("compiler", build.compiler)
       .add("flags", build.flags)
       .add("build_type", build.build_type)
@@ -83,6 +116,11 @@ std::string run_meta_json(const RunPlan& plan, const RunRecord& record) {
   if (plan.kind == RunKind::tbd) {
     meta.add_raw("tbd_metrics",
                  tbd_metrics_json(make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
+  }
+  if (!record.mixed_builds.empty()) {
+    std::vector<std::string> builds;
+    for (const RecordedBuild& shard : record.mixed_builds) builds.push_back(shard.describe());
+    meta.add("allow_mixed", true).add_raw("shard_builds", json_list(builds.begin(), builds.end()));
   }
   if (plan.experiment.record_iterations) meta.add("record_iterations", true);
   if (plan.experiment.record_beliefs) meta.add("record_beliefs", true);

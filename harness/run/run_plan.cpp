@@ -84,7 +84,7 @@ std::string RunPlan::trials_header() const {
 }
 
 std::vector<std::string> RunPlan::output_files() const {
-  std::vector<std::string> names = {"trials.csv", "summary.csv", "meta.json"};
+  std::vector<std::string> names = {"trials.csv", "summary.csv", "meta.json", "checksums.csv"};
   for (const ItemFile& file : item_files()) names.push_back(file.name);
   return names;
 }

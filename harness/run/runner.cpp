@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -29,9 +30,11 @@
 #include "harness/core/row_fields.hpp"
 #include "harness/core/summary.hpp"
 #include "harness/multi_scan/registry.hpp"
+#include "harness/run/folder_lock.hpp"
 #include "harness/run/mpi_transport.hpp"
 #include "harness/run/multi_scan_execution.hpp"
 #include "harness/run/rank_messages.hpp"
+#include "harness/run/row_checksums.hpp"
 #include "harness/run/run_folder.hpp"
 #include "harness/run/run_meta.hpp"
 #include "harness/run/run_plan.hpp"
@@ -91,25 +94,33 @@ std::atomic<bool> g_interrupted{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "the interrupt flag must be usable in a signal handler");
 extern "C" void on_interrupt(int) { g_interrupted.store(true, std::memory_order_relaxed); }
 
-// SIGINT/SIGTERM set g_interrupted while this lives (mpirun passes Ctrl-C on as SIGTERM).
+// SIGINT, SIGTERM and SIGHUP set g_interrupted while this lives (mpirun passes Ctrl-C on as
+// SIGTERM; a closed terminal or ssh session sends SIGHUP): the run stops with whole rows and
+// meta.json "interrupted".
 class InterruptHandlers {
  public:
   InterruptHandlers() {
     g_interrupted = false;
-    previous_int_ = std::signal(SIGINT, on_interrupt);
-    previous_term_ = std::signal(SIGTERM, on_interrupt);
+    for (std::size_t k = 0; k < kSignals.size(); ++k) previous_[k] = std::signal(kSignals[k], on_interrupt);
   }
   ~InterruptHandlers() {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
+    for (std::size_t k = 0; k < kSignals.size(); ++k) std::signal(kSignals[k], previous_[k]);
   }
   InterruptHandlers(const InterruptHandlers&) = delete;
   InterruptHandlers& operator=(const InterruptHandlers&) = delete;
 
  private:
-  void (*previous_int_)(int) = nullptr;
-  void (*previous_term_)(int) = nullptr;
+  static constexpr std::array<int, 3> kSignals = {SIGINT, SIGTERM, SIGHUP};
+  std::array<void (*)(int), 3> previous_{};
 };
+
+// A chunk's texts for the writer: one per row file, then the checksums.csv lines recording them.
+std::vector<std::string> with_checksums(std::vector<std::string>&& texts, const std::vector<std::string>& names) {
+  std::string lines;
+  append_checksum_lines(lines, names, texts);
+  texts.push_back(std::move(lines));
+  return std::move(texts);
+}
 
 // Per unit of this process, its time in the run in `folder` (--costs-from), which must be of the
 // same points, trials and algorithms. InputError otherwise, or for a single-scan plan.
@@ -118,6 +129,7 @@ std::vector<double> unit_predictions(const RunPlan& plan, const std::string& fol
     throw InputError("run: --costs-from orders the (item, algorithm) units of multi-scan, tracking and "
                      "track-before-detect runs; single-scan items run in order");
   }
+  require_complete_run(folder, "run --costs-from");
   const RunCosts costs = read_run_costs(folder);
   if (costs.from_means || costs.items() != plan.items() || costs.parts != plan.parts()) {
     throw InputError(fmt::format("run: --costs-from {}: {} holds {} items of {} algorithms{}, this run {} of {}", folder,
@@ -239,7 +251,7 @@ void run_chunk(const Execution& execution, Worker& worker, const RunPlan& plan, 
 // `on_progress` unless empty (in items). Returns the threads' busy seconds.
 template <class Execution>
 double run_local_chunks(const Execution& execution, const RunPlan& plan, WorkQueue& queue, OrderedWriter& writer,
-                        std::atomic<long long>& units_finished, ProgressLine* progress,
+                        const std::vector<std::string>& names, std::atomic<long long>& units_finished, ProgressLine* progress,
                         const std::function<void(long long, long long)>& on_progress) {
   const long long parts = plan.parts();
   const long long total_units = plan.shard_items() * parts;
@@ -252,7 +264,7 @@ double run_local_chunks(const Execution& execution, const RunPlan& plan, WorkQue
     while (const auto chunk = take_chunk(queue)) {
       run_chunk(execution, worker, plan, *chunk, unit_seconds);
       for (long long unit = chunk->begin; unit < chunk->end; ++unit) queue.finished(unit, unit_seconds[unit - chunk->begin]);
-      const long long written = writer.submit(chunk->begin, chunk->end, std::move(worker.texts));
+      const long long written = writer.submit(chunk->begin, chunk->end, with_checksums(std::move(worker.texts), names));
       if (writer.failed()) g_interrupted = true;  // the first failed write stops the run
       worker.texts = std::vector<std::string>(files);
       const long long done = (units_finished += chunk->end - chunk->begin) / parts;
@@ -327,7 +339,8 @@ void serve_chunks(const Execution& execution, const RunPlan& plan, const MpiTran
 // to the queue, and draws the progress line for the whole job. Returns the remote threads' busy
 // seconds.
 double coordinate(const MpiTransport& mpi, long long remote_threads, WorkQueue& queue, long long parts,
-                  OrderedWriter& writer, std::atomic<long long>& units_finished, ProgressLine& progress,
+                  OrderedWriter& writer, const std::vector<std::string>& names, std::atomic<long long>& units_finished,
+                  ProgressLine& progress,
                   const std::atomic<bool>& local_done) {
   std::map<std::pair<int, int>, double> busy_seconds;  // by (rank, thread)
   long long stops_to_send = 2 * remote_threads;       // every remote thread stops after two "none"
@@ -347,7 +360,7 @@ double coordinate(const MpiTransport& mpi, long long remote_threads, WorkQueue& 
       const WorkChunk& chunk = *result.chunk;
       for (long long unit = chunk.begin; unit < chunk.end; ++unit) queue.finished(unit, result.unit_seconds[unit - chunk.begin]);
       units_finished += chunk.end - chunk.begin;
-      writer.submit(chunk.begin, chunk.end, std::move(result.texts));
+      writer.submit(chunk.begin, chunk.end, with_checksums(std::move(result.texts), names));
       if (writer.failed()) g_interrupted = true;
     }
     const auto next = take_chunk(queue);
@@ -464,12 +477,10 @@ RunRecord started_record(const RunOptions& options, const RunPlan& plan, const s
 
 // What the writer left: items written, whether the run was cut short, the first failed write
 // (with its file's path).
-RunOutcome written_outcome(const RunPlan& plan, const OrderedWriter& writer) {
+RunOutcome written_outcome(const RunPlan& plan, const OrderedWriter& writer, std::vector<std::string> names) {
   RunOutcome outcome;
   if (const auto failure = writer.failure()) {
-    std::vector<std::string> names;  // the writer's files: the item files, then trials.csv
-    for (const ItemFile& file : plan.item_files()) names.push_back(file.name);
-    names.push_back("trials.csv");
+    names.push_back(kChecksumsFile);  // the writer's last file
     const std::string path = (std::filesystem::path(plan.output) / names.at(failure->file)).string();
     outcome.write_error = fmt::format("{}: write failed ({})", path, std::strerror(failure->error));
   }
@@ -493,16 +504,17 @@ RunOutcome run_experiment(const RunOptions& options) {
   std::vector<double> predictions;
   const RunPlan plan = checked_plan(options, hellos, predictions);
   RunRecord record = started_record(options, plan, hellos);
-  OpenedTrials opened;
-  std::vector<std::FILE*> files;
+  // Held until the end: no other process reads or writes the folder meanwhile.
+  std::optional<FolderLock> lock;
+  OpenedRun opened;
   try {
-    opened = open_trials_file(plan, options.resume, options.force, run_meta_json(plan, record));
-    for (const ItemFile& file : plan.item_files()) files.push_back(open_item_file(plan, file, opened.items_done, opened.resumed));
+    lock.emplace(plan.output, "run");
+    opened = open_run_files(plan, options.resume, options.force, run_meta_json(plan, record));
   } catch (const InputError& open_error) {
     if (mpi == nullptr) throw;
     throw stop_workers(mpi, hellos, open_error.what());
   }
-  files.push_back(opened.file);  // trials.csv last: the item files never hold fewer items
+  const std::vector<std::FILE*>& files = opened.files;
   record.items_done = opened.items_done;
   record.resumed = opened.resumed;
   write_file_atomically(meta_path(plan), run_meta_json(plan, record));
@@ -522,18 +534,20 @@ RunOutcome run_experiment(const RunOptions& options) {
   const auto wall_start = Clock::now();
   std::atomic<long long> units_finished{first_unit};
   const double busy_seconds = with_execution(plan, [&](const auto& execution) {
-    if (mpi == nullptr) return run_local_chunks(execution, plan, queue, writer, units_finished, &progress, options.on_progress);
+    if (mpi == nullptr) {
+      return run_local_chunks(execution, plan, queue, writer, opened.names, units_finished, &progress, options.on_progress);
+    }
     std::atomic<bool> local_done{false};
     double local_busy = 0.0;
     std::thread local([&] {
-      local_busy = run_local_chunks(execution, plan, queue, writer, units_finished, nullptr, options.on_progress);
+      local_busy = run_local_chunks(execution, plan, queue, writer, opened.names, units_finished, nullptr, options.on_progress);
       local_done = true;
     });
     long long remote_threads = 0;
     for (const Hello& hello : hellos) remote_threads += hello.threads;
     double remote_busy = 0.0;
     try {
-      remote_busy = coordinate(*mpi, remote_threads, queue, parts, writer, units_finished, progress, local_done);
+      remote_busy = coordinate(*mpi, remote_threads, queue, parts, writer, opened.names, units_finished, progress, local_done);
     } catch (...) {
       g_interrupted = true;
       local.join();
@@ -546,7 +560,7 @@ RunOutcome run_experiment(const RunOptions& options) {
   const double wall_seconds = std::chrono::duration<double>(Clock::now() - wall_start).count();
   for (std::FILE* file : files) std::fclose(file);
 
-  RunOutcome outcome = written_outcome(plan, writer);
+  RunOutcome outcome = written_outcome(plan, writer, opened.names);
   // A failed write of summary.csv or meta.json at the end is reported as a failed row write
   // is: every row stays, and --resume (with space freed) writes them again.
   const auto keep_first_write_error = [&outcome](const auto& write) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include <fmt/format.h>
@@ -20,6 +21,8 @@
 #include "harness/core/json.hpp"
 #include "harness/core/params.hpp"
 #include "harness/core/summary.hpp"
+#include "harness/run/folder_lock.hpp"
+#include "harness/run/row_checksums.hpp"
 #include "harness/run/run_folder.hpp"
 #include "harness/run/run_meta.hpp"
 #include "harness/run/run_plan.hpp"
@@ -79,11 +82,13 @@ std::vector<ShardMeta> read_shards(const std::vector<std::string>& paths) {
   return ordered;
 }
 
-// One shard's file, read row by row with each row's item (point · trials + trial).
+// One shard's file, read row by row with each row's item (point · trials + trial), each row
+// checked against the shard's checksums.csv (every row must be the one the shard wrote).
 class ShardRows {
  public:
   ShardRows(const RunPlan& plan, const fs::path& path, const std::string& header)
-      : plan_(plan), path_(path.string()), in_(checked(path)) {
+      : plan_(plan), path_(path.string()), in_(checked(path)),
+        recorded_((path.parent_path() / kChecksumsFile).string(), path.filename().string()) {
     std::string first;
     if (!in_ || !std::getline(in_, first) || first + "\n" != header) {
       throw InputError(fmt::format("{}: missing, or its header differs from the plan's", path_));
@@ -101,8 +106,19 @@ class ShardRows {
   const std::string& row() const { return row_; }
   void advance() {
     has_row_ = static_cast<bool>(std::getline(in_, row_));
-    if (!has_row_) return;
+    const std::optional<std::uint32_t> expected = recorded_.next();
+    if (!has_row_) {
+      if (expected) {
+        throw InputError(fmt::format("{}:{}: missing: the shard's checksums.csv records more rows than the file holds "
+                                     "(rows deleted or the file cut)", path_, line_ + 1));
+      }
+      return;
+    }
     ++line_;
+    if (!expected || in_.eof() || row_checksum(row_) != *expected) {
+      throw InputError(fmt::format("{}: not the row the shard wrote ({}: edited, cut short, or a row deleted before "
+                                   "it)", where(), expected ? "its checksum differs from checksums.csv" : "checksums.csv records no such row"));
+    }
     std::int64_t point = 0, trial = 0;
     if (!split_csv_line(row_, fields_) || fields_.size() <= trial_column_ || !parse_int64(fields_[0], point) ||
         !parse_int64(fields_[trial_column_], trial) || point < 0 ||
@@ -117,6 +133,7 @@ class ShardRows {
   const RunPlan& plan_;
   std::string path_;
   std::ifstream in_;
+  RecordedChecksums recorded_;
   std::size_t trial_column_ = 0;
   std::vector<std::string> fields_;
   std::string row_;
@@ -124,19 +141,53 @@ class ShardRows {
   long long item_ = -1, line_ = 1;
 };
 
-// Writes `name` of the merged run to `target`: block b of the plan's items comes from shard
-// b mod N, whose rows must be exactly its blocks' items in order (`rows_per_item` rows each
-// when not 0).
+// Appends the checksums of a merged file's rows to the merged checksums.csv, 512 per line.
+class ChecksumWriter {
+ public:
+  ChecksumWriter(std::FILE* out, std::string name) : out_(out), name_(std::move(name)) {}
+  void add(std::string_view row) {
+    line_ += count_ == 0 ? name_ + "," : std::string(" ");
+    line_ += fmt::format("{:08x}", row_checksum(row));
+    if (++count_ == kPerLine) flush();
+  }
+  // The errno of the first failed write, 0 if none.
+  int flush() {
+    if (count_ > 0 && reason_ == 0) {
+      line_ += '\n';
+      if (std::fwrite(line_.data(), 1, line_.size(), out_) != line_.size()) reason_ = errno != 0 ? errno : EIO;
+    }
+    line_.clear();
+    count_ = 0;
+    return reason_;
+  }
+
+ private:
+  static constexpr int kPerLine = 512;
+  std::FILE* out_;
+  std::string name_, line_;
+  int count_ = 0, reason_ = 0;
+};
+
+// Writes `name` of the merged run to `target` (and its rows' checksums to `checksums`): block b
+// of the plan's items comes from shard b mod N, whose rows must be exactly its blocks' items in
+// order (`rows_per_item` rows each when not 0). A failed write is a WriteError naming the file
+// written and the system's reason (no shard is blamed for it).
 void merge_file(const RunPlan& plan, const std::vector<ShardMeta>& shards, const std::string& name,
-                const std::string& header, long long rows_per_item, const fs::path& target) {
+                const std::string& header, long long rows_per_item, const fs::path& target, std::FILE* checksums,
+                const fs::path& checksums_path) {
   std::vector<ShardRows> readers;
   readers.reserve(shards.size());
   for (const ShardMeta& shard : shards) readers.emplace_back(plan, fs::path(shard.path) / name, header);
   std::FILE* out = std::fopen(target.c_str(), "wb");
   if (out == nullptr) throw WriteError(fmt::format("{}: cannot open for writing ({})", target.string(), std::strerror(errno)));
+  ChecksumWriter checksum_lines(checksums, name);
   int reason = 0;  // errno of the first failed write; nothing more is written after it
   const auto put = [&](const char* text) {
     if (reason == 0 && std::fputs(text, out) < 0) reason = errno != 0 ? errno : EIO;
+  };
+  const auto failed = [&] {
+    std::fclose(out);
+    return WriteError(fmt::format("{}: write failed ({})", target.string(), std::strerror(reason)));
   };
   put(header.c_str());
   const auto shard_count = static_cast<long long>(shards.size());
@@ -148,7 +199,7 @@ void merge_file(const RunPlan& plan, const std::vector<ShardMeta>& shards, const
       const long long begin = block * kItemsPerBlock, end = std::min(plan.items(), begin + kItemsPerBlock);
       std::array<long long, kItemsPerBlock> rows{};
       long long last = begin;
-      while (reader.has_row() && reader.item() < end) {
+      while (reader.has_row() && reader.item() < end && reason == 0) {
         if (reader.item() < last) {
           throw InputError(fmt::format("{}: row of point {}, trial {} is not shard {}'s next item", reader.where(),
                                        reader.item() / plan.trials, reader.item() % plan.trials, shards[s].label));
@@ -157,8 +208,10 @@ void merge_file(const RunPlan& plan, const std::vector<ShardMeta>& shards, const
         ++rows[static_cast<std::size_t>(reader.item() - begin)];
         put(reader.row().c_str());
         put("\n");
+        checksum_lines.add(reader.row());
         reader.advance();
       }
+      if (reason != 0) throw failed();
       for (long long item = begin; item < end && rows_per_item > 0; ++item) {
         if (rows[static_cast<std::size_t>(item - begin)] != rows_per_item) {
           throw InputError(fmt::format("{}/{}: point {}, trial {} has {} rows, not {}", shards[s].path, name,
@@ -167,18 +220,47 @@ void merge_file(const RunPlan& plan, const std::vector<ShardMeta>& shards, const
         }
       }
     }
+    if (reason != 0) throw failed();
     for (std::size_t s = 0; s < readers.size(); ++s) {
       if (readers[s].has_row()) {
         throw InputError(fmt::format("{}: row of point {}, trial {} is not shard {}'s", readers[s].where(),
                                      readers[s].item() / plan.trials, readers[s].item() % plan.trials, shards[s].label));
       }
     }
+  } catch (const WriteError&) {
+    throw;  // `out` is closed
   } catch (...) {
     std::fclose(out);
     throw;
   }
   if (std::fclose(out) != 0 && reason == 0) reason = errno;  // a buffered write may fail only here
   if (reason != 0) throw WriteError(fmt::format("{}: write failed ({})", target.string(), std::strerror(reason)));
+  if (const int failure = checksum_lines.flush(); failure != 0) {
+    throw WriteError(fmt::format("{}: write failed ({})", checksums_path.string(), std::strerror(failure)));
+  }
+}
+
+// The shards' build, which must be one unless `allow_mixed` (then also each shard's, into
+// `mixed` when they differ).
+RecordedBuild shards_build(const std::vector<ShardMeta>& shards, bool allow_mixed, std::vector<RecordedBuild>& mixed) {
+  std::vector<RecordedBuild> builds;
+  for (const ShardMeta& shard : shards) {
+    RecordedBuild build;
+    build.version = shard.field("version");
+    build.git_commit = shard.field("git_commit");
+    build.source_modified = shard.field("source_modified");
+    build.compiler = shard.field("compiler");
+    build.flags = shard.field("flags");
+    build.build_type = shard.field("build_type");
+    if (!builds.empty() && build != builds.front() && !allow_mixed) {
+      throw InputError(fmt::format("{}: shard {} was written by {}, but {} (shard {}) by {}; merge them with "
+                                   "--allow-mixed (recorded in meta.json) or rerun one", shard.path, shard.label,
+                                   build.describe(), shards.front().path, shards.front().label, builds.front().describe()));
+    }
+    builds.push_back(std::move(build));
+  }
+  if (std::any_of(builds.begin(), builds.end(), [&](const RecordedBuild& b) { return b != builds.front(); })) mixed = builds;
+  return builds.front();
 }
 
 // meta.json's process fields of the merged run, from the shards'.
@@ -221,40 +303,68 @@ MergeOutcome merge_shards(const MergeOptions& options) {
   for (const ShardMeta& shard : shards) {
     plan.threads = std::max(plan.threads, shard.threads());
   }
-  const bool holds_run = fs::exists(trials_path(plan)) || fs::exists(meta_path(plan));
-  if (holds_run && !options.force) {
-    throw InputError(fmt::format("{}: already holds a run; use --force to replace it", options.output));
-  }
+  RunRecord record = merged_record(shards, options.command_line, plan.items());
+  record.build = shards_build(shards, options.allow_mixed, record.mixed_builds);
 
-  std::error_code error;
   const bool created = !fs::exists(options.output);
-  fs::create_directories(options.output, error);
-  if (error) throw InputError(fmt::format("{}: cannot create output folder ({})", options.output, error.message()));
-  std::vector<ItemFile> files = plan.item_files();
-  files.push_back({"trials.csv", plan.trials_header()});
+  std::error_code error;
+  std::optional<FolderLock> lock;
+  // On an error, what this merge wrote goes: its temporary files, and the folder if it made it.
   std::vector<fs::path> temporaries;
+  const auto clean_up = [&] {
+    for (const fs::path& temporary : temporaries) fs::remove(temporary, error);
+    if (lock) lock->release();
+    if (created) fs::remove(options.output, error);
+  };
   try {
-    for (const ItemFile& file : files) {
-      temporaries.push_back(fs::path(options.output) / (file.name + ".merging"));
-      merge_file(plan, shards, file.name, file.header,
-                 file.name == "trials.csv" ? static_cast<long long>(plan.specs.size()) : 0, temporaries.back());
+    lock.emplace(options.output, "merge");  // held until the merged meta.json is written
+    const bool holds_run = fs::exists(trials_path(plan)) || fs::exists(meta_path(plan));
+    if (holds_run && !options.force) {
+      throw InputError(fmt::format("{}: already holds a run; use --force to replace it", options.output));
     }
   } catch (...) {
-    for (const fs::path& temporary : temporaries) fs::remove(temporary, error);
-    if (created) fs::remove(options.output, error);
+    clean_up();
     throw;
   }
+  std::vector<ItemFile> files = plan.item_files();
+  files.push_back({"trials.csv", plan.trials_header()});
+  files.push_back({kChecksumsFile, kChecksumsHeader});
+  for (const ItemFile& file : files) temporaries.push_back(fs::path(options.output) / (file.name + ".merging"));
   try {
+    const fs::path& checksums_path = temporaries.back();
+    std::FILE* checksums = std::fopen(checksums_path.c_str(), "wb");
+    if (checksums == nullptr || std::fputs(kChecksumsHeader, checksums) < 0) {
+      const int reason = errno;
+      if (checksums != nullptr) std::fclose(checksums);
+      throw WriteError(fmt::format("{}: write failed ({})", checksums_path.string(), std::strerror(reason)));
+    }
+    try {
+      for (std::size_t k = 0; k + 1 < files.size(); ++k) {
+        merge_file(plan, shards, files[k].name, files[k].header,
+                   files[k].name == "trials.csv" ? static_cast<long long>(plan.specs.size()) : 0, temporaries[k],
+                   checksums, checksums_path);
+      }
+    } catch (...) {
+      std::fclose(checksums);
+      throw;
+    }
+    if (std::fclose(checksums) != 0) {
+      throw WriteError(fmt::format("{}: write failed ({})", checksums_path.string(), std::strerror(errno)));
+    }
     remove_other_run_files(plan);
+    fs::remove(meta_path(plan), error);
+    fs::remove(summary_path(plan), error);
+    for (std::size_t k = 0; k < files.size(); ++k) {
+      const fs::path target = fs::path(options.output) / files[k].name;
+      fs::rename(temporaries[k], target, error);
+      if (error) throw WriteError(fmt::format("{}: cannot replace file ({})", target.string(), error.message()));
+    }
   } catch (...) {
-    for (const fs::path& temporary : temporaries) fs::remove(temporary, error);
+    clean_up();
     throw;
   }
-  fs::remove(meta_path(plan), error);
-  fs::remove(summary_path(plan), error);
-  for (std::size_t k = 0; k < files.size(); ++k) fs::rename(temporaries[k], fs::path(options.output) / files[k].name);
   write_summary(trials_path(plan), summary_path(plan), plan.metric_columns());
-  write_file_atomically(meta_path(plan), run_meta_json(plan, merged_record(shards, options.command_line, plan.items())));
+  write_file_atomically(meta_path(plan), run_meta_json(plan, record));
 
   MergeOutcome outcome;
   outcome.items = plan.items();

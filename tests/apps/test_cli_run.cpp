@@ -264,6 +264,8 @@ TEST_CASE("cli merge: missing, duplicated, foreign or incomplete shards are one-
   }
   SECTION("rows of another shard") {
     dir.write("s3/trials.csv", dir.read("s1/trials.csv"));
+    expect_error(dir, {"merge", "m", "s1", "s2", "s3"}, {"s3/trials.csv:2: not the row the shard wrote"});
+    dir.write("s3/checksums.csv", dir.read("s1/checksums.csv"));  // rows checksummed, but not shard 3's
     expect_error(dir, {"merge", "m", "s1", "s2", "s3"}, {"s3/trials.csv", "shard 3/3"});
   }
   SECTION("a split into a million, one shard given: the first eight missing named, the rest counted") {

@@ -57,14 +57,14 @@ TEST_CASE("force: a fresh run leaves none of an earlier run's result files, and 
   dir.write("bearings.ini", kBearings);
   dir.write("grid.ini", kGrid);
   run_in(dir, "tbd.ini", "F", 1);
-  CHECK(files_in(dir, "F") == std::set<std::string>{"trials.csv", "summary.csv", "meta.json", "steps.csv",
+  CHECK(files_in(dir, "F") == std::set<std::string>{"trials.csv", "summary.csv", "meta.json", "checksums.csv", "steps.csv",
                                                      "estimates.csv", "frames.csv", "beliefs.csv"});
   dir.write("F/notes.txt", "a study's own file\n");
   run_in(dir, "bearings.ini", "F", 1, false, true);
   CHECK(files_in(dir, "F") ==
-        std::set<std::string>{"trials.csv", "summary.csv", "meta.json", "targets.csv", "notes.txt"});
+        std::set<std::string>{"trials.csv", "summary.csv", "meta.json", "checksums.csv", "targets.csv", "notes.txt"});
   run_in(dir, "grid.ini", "F", 2, false, true);
-  CHECK(files_in(dir, "F") == std::set<std::string>{"trials.csv", "summary.csv", "meta.json", "notes.txt"});
+  CHECK(files_in(dir, "F") == std::set<std::string>{"trials.csv", "summary.csv", "meta.json", "checksums.csv", "notes.txt"});
   CHECK(dir.read("F/notes.txt") == "a study's own file\n");
 }
 
@@ -88,7 +88,7 @@ TEST_CASE("force: merge --force replaces an earlier run of another kind", "[run]
   CHECK(dir.exists("M/steps.csv"));
   merge.force = true;
   merge_shards(merge);
-  CHECK(files_in(dir, "M") == std::set<std::string>{"trials.csv", "summary.csv", "meta.json", "targets.csv"});
+  CHECK(files_in(dir, "M") == std::set<std::string>{"trials.csv", "summary.csv", "meta.json", "checksums.csv", "targets.csv"});
 }
 
 TEST_CASE("force: every kind's result files are known to run_file_names", "[run][force]") {

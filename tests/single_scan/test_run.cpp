@@ -24,6 +24,7 @@
 #include "harness/core/build_info.hpp"
 #include "tests/support/cli_contract.hpp"
 #include "tests/support/cli_runner.hpp"
+#include "tests/support/run_files.hpp"
 #include "tests/support/sanitized.hpp"
 
 namespace DABENCH_TEST_FILE {
@@ -359,10 +360,10 @@ TEST_CASE("run: SIGINT stops with status 130 and --resume finishes identically",
   {
     CliProcess process(with({"--threads", "2", "--out", "B"}), dir.work(), dir.io());
     // Interrupt once rows are being written (the handler is installed by then).
-    const fs::path trials = dir.work() / "B" / "trials.csv";
+    const fs::path trials_file = dir.work() / "B" / "trials.csv";
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
     while (std::chrono::steady_clock::now() < deadline) {
-      if (fs::exists(trials) && count_lines(read_text(trials)) >= 1 + rows_per_item) break;
+      if (fs::exists(trials_file) && count_lines(read_text(trials_file)) >= 1 + rows_per_item) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(30));
@@ -439,8 +440,7 @@ TEST_CASE("run: --resume after a hard kill at any byte offset finishes identical
     // A hard kill leaves trials.csv cut anywhere and meta.json saying "running"; no summary.
     const std::string folder = "K" + std::to_string(c);
     fs::create_directories(dir.work() / folder);
-    write_text(dir.work() / folder / "trials.csv", complete.substr(0, offset));
-    write_text(dir.work() / folder / "meta.json", meta);
+    write_run_files(dir, folder, {{"trials.csv", complete.substr(0, offset)}, {"meta.json", meta}});
     run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", folder, "--resume"});
     check_same_table(reference, trials_without_time(dir, folder));
     check_same_table(reference_summary, summary_without_time(dir, folder));
@@ -473,8 +473,7 @@ TEST_CASE("run: --resume refuses kept rows that are not the plan's items", "[run
   };
   for (const auto& [what, trials] : cases) {
     DYNAMIC_SECTION(what) {
-      write_text(dir.work() / "K" / "trials.csv", trials);
-      write_text(dir.work() / "K" / "meta.json", meta);
+      write_run_files(dir, "K", {{"trials.csv", trials}, {"meta.json", meta}});
       const CliResult result = run_dabench(dir, {"run", "tiny.ini", "--threads", "2", "--out", "K", "--resume"});
       INFO(result.err);
       CHECK(result.status == 2);
@@ -493,7 +492,7 @@ TEST_CASE("run: --resume after a hard kill inside the header line", "[run][resum
   dir.write("tiny.ini", kTiny);
   run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "A", "--trials", "5"});
   const std::string complete = dir.read("A/trials.csv");
-  write_text(dir.work() / "K" / "trials.csv", complete.substr(0, 20));
+  write_run_files(dir, "K", {{"trials.csv", complete.substr(0, 20)}});
   write_text(dir.work() / "K" / "meta.json", dir.read("A/meta.json"));
   run_ok(dir, {"run", "tiny.ini", "--threads", "2", "--out", "K", "--resume", "--trials", "5"});
   check_same_table(trials_without_time(dir, "A"), trials_without_time(dir, "K"));

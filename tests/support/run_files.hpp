@@ -6,6 +6,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -100,9 +102,35 @@ inline std::size_t offset_of_item(const std::string& text, long long item, int t
 // A run file's name (in its output folder) and its text.
 using RunFile = std::pair<std::string, std::string>;
 
-// Writes `files` into dir/folder, as a hard kill of a run into that folder could leave them.
+// checksums.csv recording every whole row (after the header line) of each CSV file of `files`,
+// as the runner writes it once those rows are flushed: `FILE,C1 C2 ...` with C the 32-bit FNV-1a
+// of the row, computed here independently of harness/run/row_checksums.cpp.
+inline std::string checksums_recording(const std::vector<RunFile>& files) {
+  std::string text = "file,row_checksums\n";
+  for (const auto& [name, contents] : files) {
+    if (name.size() < 4 || name.compare(name.size() - 4, 4, ".csv") != 0) continue;
+    std::string line;
+    const std::size_t header_end = contents.find('\n');
+    for (std::size_t at = header_end == std::string::npos ? contents.size() : header_end + 1; at < contents.size();) {
+      const std::size_t end = contents.find('\n', at);
+      if (end == std::string::npos) break;  // a row cut short was never recorded
+      std::uint32_t hash = 2166136261u;
+      for (std::size_t k = at; k < end; ++k) hash = (hash ^ static_cast<unsigned char>(contents[k])) * 16777619u;
+      char hex[9];
+      std::snprintf(hex, sizeof hex, "%08x", hash);
+      line += (line.empty() ? name + "," : std::string(" ")) + hex;
+      at = end + 1;
+    }
+    if (!line.empty()) text += line + "\n";
+  }
+  return text;
+}
+
+// Writes `files` into dir/folder, as a hard kill of a run into that folder could leave them: with
+// a checksums.csv recording their whole rows.
 inline void write_run_files(const TempDir& dir, const std::string& folder, const std::vector<RunFile>& files) {
   for (const auto& [name, text] : files) write_text(dir.work() / folder / name, text);
+  write_text(dir.work() / folder / "checksums.csv", checksums_recording(files));
 }
 
 // The tracking run in dir/folder finished with the files of an uninterrupted one: trials.csv and
