@@ -1,5 +1,7 @@
 #include "harness/core/atomic_file.hpp"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -12,7 +14,8 @@
 namespace dabench {
 
 void write_file_atomically(const std::string& path, const std::string& contents) {
-  const std::string temporary = path + ".tmp";
+  // Named per process: two processes writing one file never share (or remove) a temporary.
+  const std::string temporary = fmt::format("{}.tmp.{}", path, getpid());
   std::FILE* file = std::fopen(temporary.c_str(), "wb");
   if (file == nullptr) throw WriteError(fmt::format("{}: cannot write ({})", path, std::strerror(errno)));
   const bool written = std::fwrite(contents.data(), 1, contents.size(), file) == contents.size();

@@ -1,5 +1,5 @@
 #pragma once
-// Writes a whole file or nothing: the text goes to NAME.tmp, which is renamed over NAME.
+// Writes a whole file or nothing: the text goes to NAME.tmp.PID, which is renamed over NAME.
 #include <string>
 
 namespace dabench {

@@ -7,8 +7,11 @@
 //    keys with commas and quotes, and InputError (naming file and line) for malformed input.
 // The fixture tests/data/trials_small.csv is small enough to check every number by hand.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <cmath>
+#include <map>
+#include <random>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -245,6 +248,56 @@ TEST_CASE("summary: write_summary rejects malformed trials.csv naming file and l
     const std::string message = input_error_message(
         [&] { write_summary((dir.work() / "absent.csv").string(), summary.string(), {"max_error"}); });
     CHECK(contains(message, "absent.csv"));
+  }
+}
+
+// write_summary streams trials.csv and sorts through temporary files when the values exceed its
+// buffer; its numbers are summarize()'s on the same values, bit for bit, whatever the buffer
+// (here 100 000, 1 000 and 97 values: of the 19 098 values none, 20 or 197 sorted runs in files).
+TEST_CASE("summary: the streamed summary is summarize()'s, bit for bit, for any sort buffer", "[summary]") {
+  TempDir dir;
+  std::mt19937_64 random(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::string trials = "point,spacing,trial,seed,algorithm,status,a,b\n";
+  std::map<std::pair<int, int>, std::vector<std::vector<double>>> values;  // (point, algorithm) → per metric
+  for (int point = 0; point < 3; ++point) {
+    for (int trial = 0; trial < 1600; ++trial) {
+      for (int algorithm = 0; algorithm < 2; ++algorithm) {
+        auto& metrics = values[{point, algorithm}];
+        metrics.resize(2);
+        // Ties (rounded values), a negative zero, and a missing value now and then.
+        const double a = std::round(normal(random) * 4.0) / 4.0 + (trial == 5 ? -0.0 : 0.0);
+        const double b = std::exp(normal(random) + point);
+        const bool missing = trial % 97 == 3;
+        if (!missing) metrics[0].push_back(a);
+        metrics[1].push_back(b);
+        trials += fmt::format("{},{},{},7,alg{},ok,{},{}\n", point, point * 0.5, trial, algorithm,
+                              missing ? std::string() : fmt::format("{}", a), b);
+      }
+    }
+  }
+  write_text(dir.work() / "trials.csv", trials);
+  std::vector<std::string> expected_rows;
+  for (int point = 0; point < 3; ++point) {
+    for (int algorithm = 0; algorithm < 2; ++algorithm) {
+      std::string row = fmt::format("{},{},alg{},1600,1600,0,0", point, point * 0.5, algorithm);
+      for (std::vector<double> metric : values[{point, algorithm}]) {
+        const MetricSummary s = summarize(metric);
+        row += fmt::format(",{},{},{},{},{},{}", s.count, s.mean, s.standard_error, s.median, s.p5, s.p95);
+      }
+      expected_rows.push_back(row);
+    }
+  }
+  for (const std::size_t buffer : {std::size_t{100000}, std::size_t{1000}, std::size_t{97}}) {
+    INFO("sort buffer " << buffer);
+    const fs::path out = dir.work() / "summary.csv";
+    write_summary((dir.work() / "trials.csv").string(), out.string(), {"a", "b"}, buffer);
+    const auto lines = split_lines(read_text(out));
+    REQUIRE(lines.size() == expected_rows.size() + 1);
+    for (std::size_t r = 0; r < expected_rows.size(); ++r) CHECK(lines[r + 1] == expected_rows[r]);
+    std::size_t files = 0;
+    for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir.work())) ++files;
+    CHECK(files == 2);  // trials.csv and summary.csv: the sort's files are gone
   }
 }
 
