@@ -4,9 +4,11 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -142,100 +144,152 @@ std::vector<double> holm_adjust(const std::vector<double>& p_values) {
 namespace {
 
 // One run's trials.csv: per (point, trial) and algorithm, the requested metrics.
-struct RunTable {
-  std::vector<std::string> header;
-  std::string point_header;                          // "point,param,..." (the columns before trial)
-  std::map<long long, std::string> point_fields;     // per point, its leading fields as written
-  std::set<std::string> algorithms;
-  // (algorithm, metric) → (point, trial) → value (NaN when empty).
-  std::map<std::pair<std::string, std::string>, std::map<std::pair<long long, long long>, double>> values;
-};
-
 int column_of(const std::vector<std::string>& header, const std::string& name) {
   const auto it = std::find(header.begin(), header.end(), name);
   return it == header.end() ? -1 : static_cast<int>(it - header.begin());
 }
 
-RunTable read_run(const std::string& folder, const std::vector<std::string>& algorithms, std::vector<std::string>& metrics) {
-  const std::string path = (std::filesystem::path(folder) / "trials.csv").string();
-  if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("compare: {}: no trials.csv (a run folder?)", folder));
-  const std::string text = read_input_file(path, "trials file", kMaxTrialsBytes);
-  RunTable table;
-  std::vector<std::string> fields;
-  int trial = -1, algorithm = -1;
-  std::vector<int> metric_columns;
-  std::size_t line = 0;
-  for (std::size_t at = 0; at < text.size();) {
-    std::size_t end = text.find('\n', at);
-    if (end == std::string::npos) end = text.size();
-    ++line;
-    const std::string_view row = std::string_view(text).substr(at, end - at);
-    at = end + 1;
-    if (!split_csv_line(row, fields)) throw InputError(fmt::format("compare: {}:{}: a quote is left open", path, line));
-    if (line == 1) {
-      table.header = fields;
-      trial = column_of(fields, "trial");
-      algorithm = column_of(fields, "algorithm");
-      if (column_of(fields, "point") != 0 || trial < 1 || algorithm < 0) {
-        throw InputError(fmt::format("compare: {}: not a dabench trials.csv (point, trial, algorithm columns)", path));
-      }
-      for (int c = 0; c < trial; ++c) table.point_header += (c ? "," : "") + fields[static_cast<std::size_t>(c)];
-      if (metrics.empty()) {
-        for (const char* name : {"max_error", "mean_hpd", "gospa", "mospa_km"}) {
-          if (column_of(fields, name) >= 0) metrics.push_back(name);
-        }
-        for (const char* name : {"time_us", "step_time_us", "tet_s"}) {
-          if (column_of(fields, name) >= 0) metrics.push_back(name);
-        }
-      }
-      for (const std::string& metric : metrics) {
-        const int c = column_of(fields, metric);
-        if (c < 0 || c <= algorithm) {
-          throw InputError(fmt::format("compare: {}: no metric column '{}' (columns after 'algorithm')", path, metric));
-        }
-        metric_columns.push_back(c);
-      }
-      continue;
+// One sweep point's rows of the compared algorithms: per (algorithm, metric) index, the
+// (trial, value) pairs in file order (value NaN when empty).
+struct PointRows {
+  long long point = -1;
+  std::string fields;  // its leading fields (point, parameters) as written
+  std::vector<std::vector<std::pair<long long, double>>> values;
+};
+
+// `values` by trial (a trial given twice keeps its last value, as a map would): dabench writes
+// them in trial order, so this is usually a check.
+void by_trial(std::vector<std::pair<long long, double>>& values) {
+  const auto trial_less = [](const auto& x, const auto& y) { return x.first < y.first; };
+  if (std::is_sorted(values.begin(), values.end(), [](const auto& x, const auto& y) { return x.first <= y.first; })) return;
+  std::stable_sort(values.begin(), values.end(), trial_less);
+  std::vector<std::pair<long long, double>> last;
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (k + 1 < values.size() && values[k + 1].first == values[k].first) continue;
+    last.push_back(values[k]);
+  }
+  values = std::move(last);
+}
+
+// A run's trials.csv read point by point (its rows are in point order, as dabench writes them),
+// so that memory holds one point's values of the compared algorithms, not the run's.
+class PointStream {
+ public:
+  // `metrics` empty: the kind's default (its error and time columns), filled in.
+  PointStream(const std::string& folder, std::vector<std::string> algorithms, std::vector<std::string>& metrics)
+      : path_((std::filesystem::path(folder) / "trials.csv").string()), algorithms_(std::move(algorithms)) {
+    if (!std::filesystem::is_regular_file(path_)) throw InputError(fmt::format("compare: {}: no trials.csv (a run folder?)", folder));
+    check_input_file(path_, "trials file", kMaxTrialsBytes);
+    in_.open(path_, std::ios::binary);
+    std::string line;
+    if (!std::getline(in_, line) || !split_csv_line(line, header_)) {
+      throw InputError(fmt::format("compare: {}: not a dabench trials.csv (no header)", path_));
     }
-    if (fields.size() != table.header.size()) {
-      throw InputError(fmt::format("compare: {}:{}: {} fields, the header has {}", path, line, fields.size(), table.header.size()));
+    trial_ = column_of(header_, "trial");
+    algorithm_ = column_of(header_, "algorithm");
+    if (column_of(header_, "point") != 0 || trial_ < 1 || algorithm_ < 0) {
+      throw InputError(fmt::format("compare: {}: not a dabench trials.csv (point, trial, algorithm columns)", path_));
     }
-    const std::string& name = fields[static_cast<std::size_t>(algorithm)];
-    table.algorithms.insert(name);
-    if (std::find(algorithms.begin(), algorithms.end(), name) == algorithms.end()) continue;
+    for (int c = 0; c < trial_; ++c) point_header_ += (c ? "," : "") + header_[static_cast<std::size_t>(c)];
+    if (metrics.empty()) {
+      for (const char* name : {"max_error", "mean_hpd", "gospa", "mospa_km", "time_us", "step_time_us", "tet_s"}) {
+        if (column_of(header_, name) >= 0) metrics.push_back(name);
+      }
+    }
+    for (const std::string& metric : metrics) {
+      const int c = column_of(header_, metric);
+      if (c < 0 || c <= algorithm_) {
+        throw InputError(fmt::format("compare: {}: no metric column '{}' (columns after 'algorithm')", path_, metric));
+      }
+      metric_columns_.push_back(c);
+    }
+    has_row_ = read_row();
+  }
+
+  const std::string& point_header() const { return point_header_; }
+  std::size_t slot(std::size_t algorithm, std::size_t metric) const { return algorithm * metric_columns_.size() + metric; }
+
+  // The next point's rows; false after the last. InputError for a malformed row, rows out of
+  // point order, or (at the end) a compared algorithm without rows.
+  bool next_point(PointRows& rows) {
+    if (!has_row_) {
+      check_algorithms_found();
+      return false;
+    }
+    rows.point = point_;
+    rows.fields = leading_;
+    rows.values.resize(algorithms_.size() * metric_columns_.size());
+    for (auto& values : rows.values) values.clear();
+    while (has_row_ && point_ == rows.point) {
+      const auto wanted = std::find(algorithms_.begin(), algorithms_.end(), fields_[static_cast<std::size_t>(algorithm_)]);
+      if (wanted != algorithms_.end()) {
+        const auto a = static_cast<std::size_t>(wanted - algorithms_.begin());
+        for (std::size_t k = 0; k < metric_columns_.size(); ++k) {
+          const std::string& field = fields_[static_cast<std::size_t>(metric_columns_[k])];
+          rows.values[slot(a, k)].emplace_back(trial_index_, field.empty() ? kNaN : std::strtod(field.c_str(), nullptr));
+        }
+      }
+      const long long previous = point_;
+      has_row_ = read_row();
+      if (has_row_ && point_ < previous) {
+        throw InputError(fmt::format("compare: {}:{}: point {} after point {}: rows are not in point order (as dabench "
+                                     "writes them)", path_, line_, point_, previous));
+      }
+    }
+    return true;
+  }
+
+ private:
+  bool read_row() {
+    std::string line;
+    if (!std::getline(in_, line)) return false;
+    ++line_;
+    if (!split_csv_line(line, fields_)) throw InputError(fmt::format("compare: {}:{}: a quote is left open", path_, line_));
+    if (fields_.size() != header_.size()) {
+      throw InputError(fmt::format("compare: {}:{}: {} fields, the header has {}", path_, line_, fields_.size(), header_.size()));
+    }
+    seen_.insert(fields_[static_cast<std::size_t>(algorithm_)]);
     const auto index = [&](const std::string& field) {
       long long value = -1;
       const auto [stop, error] = std::from_chars(field.data(), field.data() + field.size(), value);
       if (error != std::errc() || stop != field.data() + field.size() || value < 0) {
-        throw InputError(fmt::format("compare: {}:{}: '{}' is not a point or trial index", path, line, field));
+        throw InputError(fmt::format("compare: {}:{}: '{}' is not a point or trial index", path_, line_, field));
       }
       return value;
     };
-    const long long point = index(fields[0]), trial_index = index(fields[static_cast<std::size_t>(trial)]);
-    if (!table.point_fields.count(point)) {
-      std::string leading;
-      for (int c = 0; c < trial; ++c) {
-        if (c > 0) leading += ',';
-        append_csv_field(leading, fields[static_cast<std::size_t>(c)]);
+    const long long point = index(fields_[0]);
+    trial_index_ = index(fields_[static_cast<std::size_t>(trial_)]);
+    if (point != point_) {
+      leading_.clear();
+      for (int c = 0; c < trial_; ++c) {
+        if (c > 0) leading_ += ',';
+        append_csv_field(leading_, fields_[static_cast<std::size_t>(c)]);
       }
-      table.point_fields[point] = leading;
     }
-    for (std::size_t k = 0; k < metrics.size(); ++k) {
-      const std::string& field = fields[static_cast<std::size_t>(metric_columns[k])];
-      char* stop = nullptr;
-      const double value = field.empty() ? kNaN : std::strtod(field.c_str(), &stop);
-      table.values[{name, metrics[k]}][{point, trial_index}] = value;
-    }
+    point_ = point;
+    return true;
   }
-  for (const std::string& name : algorithms) {
-    if (!table.algorithms.count(name)) {
+
+  void check_algorithms_found() const {
+    for (const std::string& name : algorithms_) {
+      if (seen_.count(name)) continue;
       std::string known;
-      for (const std::string& a : table.algorithms) known += (known.empty() ? "" : ", ") + a;
-      throw InputError(fmt::format("compare: {}: no rows of algorithm '{}' (it has: {})", path, name, known));
+      for (const std::string& a : seen_) known += (known.empty() ? "" : ", ") + a;
+      throw InputError(fmt::format("compare: {}: no rows of algorithm '{}' (it has: {})", path_, name, known));
     }
   }
-  return table;
-}
+
+  std::string path_;
+  std::vector<std::string> algorithms_;
+  std::ifstream in_;
+  std::vector<std::string> header_, fields_;
+  std::string point_header_, leading_;
+  int trial_ = -1, algorithm_ = -1;
+  std::vector<int> metric_columns_;
+  std::set<std::string> seen_;
+  bool has_row_ = false;
+  long long point_ = -1, trial_index_ = -1, line_ = 1;
+};
 
 std::string meta_field(const std::string& folder, const char* key) {
   const std::string path = (std::filesystem::path(folder) / "meta.json").string();
@@ -257,9 +311,10 @@ Comparison compare_runs(const CompareOptions& options) {
   if (two_runs) require_complete_run(options.run_b, "compare");
   std::vector<std::string> metrics = options.metrics;
   Comparison comparison;
-  RunTable a = read_run(options.run_a, options.algorithms, metrics);
-  RunTable b;
-  std::string name_a = options.algorithms[0], name_b = two_runs ? options.algorithms[0] : options.algorithms[1];
+  PointStream a(options.run_a, options.algorithms, metrics);
+  std::optional<PointStream> b;
+  const std::string& name_a = options.algorithms[0];
+  const std::string& name_b = two_runs ? options.algorithms[0] : options.algorithms[1];
   if (two_runs) {
     for (const char* key : {"fingerprint", "seed"}) {
       if (meta_field(options.run_a, key) != meta_field(options.run_b, key)) {
@@ -267,32 +322,50 @@ Comparison compare_runs(const CompareOptions& options) {
                                      "are not the same problems", options.run_a, options.run_b, key));
       }
     }
-    b = read_run(options.run_b, options.algorithms, metrics);
+    b.emplace(options.run_b, options.algorithms, metrics);
     comparison.label_a = fmt::format("{} ({})", name_a, options.run_a);
     comparison.label_b = fmt::format("{} ({})", name_b, options.run_b);
   } else {
     comparison.label_a = name_a;
     comparison.label_b = name_b;
   }
-  const RunTable& other = two_runs ? b : a;
-  comparison.header = a.point_header;
-  for (const std::string& metric : metrics) {
-    const auto& values_a = a.values[{name_a, metric}];
-    const auto& values_b = other.values.at({name_b, metric});
-    const std::size_t first = comparison.rows.size();
-    for (const auto& [point, fields] : a.point_fields) {
-      std::vector<double> differences;
-      for (auto it = values_a.lower_bound({point, 0}); it != values_a.end() && it->first.first == point; ++it) {
-        const auto match = values_b.find(it->first);
-        if (match == values_b.end() || !std::isfinite(it->second) || !std::isfinite(match->second)) continue;
-        differences.push_back(it->second - match->second);
-      }
-      comparison.rows.push_back({fields, metric, paired_statistics(differences), kNaN});
+  comparison.header = a.point_header();
+  // Point by point (file order), then the rows metric by metric, as the table shows them.
+  std::vector<std::vector<ComparisonRow>> by_metric(metrics.size());
+  PointRows rows_a, rows_b;
+  bool b_has_point = false;
+  while (a.next_point(rows_a)) {
+    bool paired = true;
+    if (b) {  // run B's rows of the same point (none when it has no such point)
+      while ((!b_has_point || rows_b.point < rows_a.point) && (b_has_point = b->next_point(rows_b))) {}
+      paired = b_has_point && rows_b.point == rows_a.point;
     }
+    for (std::size_t k = 0; k < metrics.size(); ++k) {
+      auto& values_a = rows_a.values[a.slot(0, k)];
+      std::vector<double> differences;  // in trial order
+      if (paired) {
+        auto& values_b = two_runs ? rows_b.values[b->slot(0, k)] : rows_a.values[a.slot(1, k)];
+        by_trial(values_a);
+        by_trial(values_b);
+        auto match = values_b.begin();
+        for (const auto& [trial, value_a] : values_a) {
+          while (match != values_b.end() && match->first < trial) ++match;
+          if (match == values_b.end() || match->first != trial) continue;
+          if (std::isfinite(value_a) && std::isfinite(match->second)) differences.push_back(value_a - match->second);
+        }
+      }
+      by_metric[k].push_back({rows_a.fields, metrics[k], paired_statistics(differences), kNaN});
+    }
+  }
+  if (b) {
+    while (b->next_point(rows_b)) {}  // (its algorithms checked to have rows)
+  }
+  for (std::vector<ComparisonRow>& rows : by_metric) {
     std::vector<double> p;
-    for (std::size_t r = first; r < comparison.rows.size(); ++r) p.push_back(comparison.rows[r].stats.n > 0 ? comparison.rows[r].stats.wilcoxon_p : kNaN);
+    for (const ComparisonRow& row : rows) p.push_back(row.stats.n > 0 ? row.stats.wilcoxon_p : kNaN);
     const std::vector<double> holm = holm_adjust(p);
-    for (std::size_t r = first; r < comparison.rows.size(); ++r) comparison.rows[r].holm_p = holm[r - first];
+    for (std::size_t r = 0; r < rows.size(); ++r) rows[r].holm_p = holm[r];
+    comparison.rows.insert(comparison.rows.end(), rows.begin(), rows.end());
   }
   return comparison;
 }

@@ -14,6 +14,8 @@
 //   a_better     the share of trials with d < 0 (A lower: better for errors and times), ties
 //                the share with d = 0.
 // A trial where either row has no value (skipped, failed) is left out of that metric's pairs.
+// trials.csv is read point by point (rows in point order, as dabench writes them): memory holds
+// one point's values of the compared algorithms.
 #include <optional>
 #include <string>
 #include <vector>
