@@ -326,7 +326,7 @@ int command_solve(int argc, char** argv) {
   problem.context.lambda_fa = lambda_fa;
   MarginalTable marginals;
   SolveReport report;
-  solver->solve(problem, marginals, report);
+  if (!refuse_must_detect(*solver, problem, report)) solver->solve(problem, marginals, report);
   reject_non_distribution(problem, marginals, report);
   if (!report.skipped.empty()) {
     std::fprintf(stderr, "dabench: %s: skipped:%s (the algorithm refused this problem)\n", spec.c_str(), report.skipped.c_str());

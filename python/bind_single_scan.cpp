@@ -70,7 +70,7 @@ void solve(SingleScanSolver& solver, const SingleScanProblem& problem, Solved& o
   out.report.reset();
   const auto start = Clock::now();
   try {
-    solver.solve(problem, out.marginals, out.report);
+    if (!refuse_must_detect(solver, problem, out.report)) solver.solve(problem, out.marginals, out.report);
   } catch (const std::exception& error) {
     out.report.skipped = "failed:" + one_line(error.what());
   }

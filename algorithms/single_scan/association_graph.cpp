@@ -108,4 +108,27 @@ RowNormalizer write_normalized_row(const AssociationGraph& graph, int i, const d
   return z;
 }
 
+bool must_detect_feasible(const AssociationGraph& graph, const SingleScanProblem& problem) {
+  std::vector<int> owner(static_cast<std::size_t>(graph.measurements()), -1);  // the target holding j
+  std::vector<int> visited(static_cast<std::size_t>(graph.measurements()), -1);  // stamp: the search
+  // Finds a measurement for target i, moving earlier holders along an augmenting path.
+  const auto augment = [&](int i, int stamp, const auto& self) -> bool {
+    for (int e = graph.row_begin(i); e < graph.row_end(i); ++e) {
+      const int j = graph.edge_measurement(e);
+      if (visited[static_cast<std::size_t>(j)] == stamp) continue;
+      visited[static_cast<std::size_t>(j)] = stamp;
+      const int holder = owner[static_cast<std::size_t>(j)];
+      if (holder < 0 || self(holder, stamp, self)) {
+        owner[static_cast<std::size_t>(j)] = i;
+        return true;
+      }
+    }
+    return false;
+  };
+  for (int i = 0; i < graph.targets(); ++i) {
+    if (problem.must_detect(i) && !augment(i, i, augment)) return false;
+  }
+  return true;
+}
+
 }  // namespace dabench

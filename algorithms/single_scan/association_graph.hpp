@@ -81,4 +81,10 @@ struct RowNormalizer {
 RowNormalizer write_normalized_row(const AssociationGraph& graph, int i, const double* weight, double* row,
                                    double floor = 0.0);
 
+// Whether some event gives every target that must be detected (problem.must_detect) its own
+// gated measurement: a matching that covers them in the graph of the last build() (augmenting
+// paths, Kuhn's algorithm; it allocates, and is called only for problems that have such
+// targets). False: no event has positive weight, the problem is infeasible.
+bool must_detect_feasible(const AssociationGraph& graph, const SingleScanProblem& problem);
+
 }  // namespace dabench

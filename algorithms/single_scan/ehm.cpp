@@ -18,9 +18,15 @@ void Ehm::solve(const SingleScanProblem& problem, MarginalTable& marginals, Solv
   report.reset();
   stats_ = EhmStats{};
   graph_.build(problem, options_.threshold);
+  if (problem.has_must_detect_targets() && !must_detect_feasible(graph_, problem)) {
+    report.skipped = "infeasible";
+    return;
+  }
   graph_.find_clusters();
   const int n = graph_.targets();
   const int m = graph_.measurements();
+  must_detect_.resize(n);
+  for (int i = 0; i < n; ++i) must_detect_[i] = problem.must_detect(i);
   marginals.reshape_zero(n, m);
   local_id_.assign(m, -1);  // clusters use disjoint measurements: one reset per solve suffices
   nodes_total_ = 0;
@@ -36,10 +42,22 @@ void Ehm::solve(const SingleScanProblem& problem, MarginalTable& marginals, Solv
   stats_.nodes = nodes_total_;
 }
 
-// A cluster of one target: p(a = j) = ψ(j) / (1 + Σ ψ) (write_normalized_row).
+// A cluster of one target: p(a = j) = ψ(j) / (1 + Σ ψ) (write_normalized_row); ψ(j) / Σ ψ for a
+// target that must be detected (it has a gated measurement: the problem is feasible).
 void Ehm::solve_single(int target, MarginalTable& marginals) {
-  const RowNormalizer z = write_normalized_row(graph_, target, graph_.edge_weights(), marginals.row(target));
-  stats_.log_partition += std::log(z.largest) + std::log(z.total);
+  if (must_detect_[target]) {
+    double largest = 0.0, total = 0.0;
+    for (int e = graph_.row_begin(target); e < graph_.row_end(target); ++e) largest = std::max(largest, graph_.edge_weight(e));
+    for (int e = graph_.row_begin(target); e < graph_.row_end(target); ++e) total += graph_.edge_weight(e) / largest;
+    double* row = marginals.row(target);
+    for (int e = graph_.row_begin(target); e < graph_.row_end(target); ++e) {
+      row[graph_.edge_measurement(e) + 1] = graph_.edge_weight(e) / largest / total;
+    }
+    stats_.log_partition += std::log(largest) + std::log(total);
+  } else {
+    const RowNormalizer z = write_normalized_row(graph_, target, graph_.edge_weights(), marginals.row(target));
+    stats_.log_partition += std::log(z.largest) + std::log(z.total);
+  }
   ++nodes_total_;
   stats_.max_layer_width = std::max(stats_.max_layer_width, 1);
   stats_.largest_cluster = std::max(stats_.largest_cluster, 1);
@@ -84,7 +102,7 @@ const char* Ehm::solve_cluster(int first, int last, MarginalTable& marginals) {
     }
     row_scale_[li] = largest;
     exclusive_sum_[li] = exclusive;
-    stay_weight_[li] = 1.0 / largest + exclusive;
+    stay_weight_[li] = (must_detect_[t] ? 0.0 : 1.0 / largest) + exclusive;
   }
   gate_begin_[size] = static_cast<int>(gate_meas_.size());
 

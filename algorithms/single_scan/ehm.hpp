@@ -49,6 +49,9 @@
 //    greedy orders started by their own rule and from both ends of the BFS diameter, and the
 //    input order; choosing costs O(K²·gate) per cluster, negligible next to the net.
 //  - `threshold` zeroes normalised weights below it before anything else (as `exact:threshold`).
+//  - A target that must be detected (a zero missed-detection weight, Pd = 1) has a miss of weight
+//    0: its choice 0 holds its exclusive measurements only. A problem where no event gives every
+//    such target a measurement is skipped:infeasible (must_detect_feasible), before any net.
 //  - Work limit: the total number of net nodes in one solve is capped by `max_nodes`; past it
 //    the solve reports skipped:work_limit (so do more than 16 stored edges per allowed node).
 //    Before building, the chosen order's estimated net size (order_cost: an upper bound on the
@@ -121,6 +124,7 @@ class Ehm final : public SingleScanSolver {
 
   explicit Ehm(const Options& options) : options_(options) {}
   void solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) override;
+  bool accepts_must_detect() const override { return true; }
   const EhmStats& stats() const { return stats_; }
 
  private:
@@ -180,7 +184,8 @@ class Ehm final : public SingleScanSolver {
   std::vector<int> gate_meas_;        //   local shared id
   std::vector<int> gate_edge_;        //   graph edge (for the output column)
   std::vector<double> gate_weight_;   //   ψ / row scale
-  std::vector<double> stay_weight_;   // li → (1 + Σ_exclusive ψ) / row scale
+  std::vector<double> stay_weight_;   // li → (1 + Σ_exclusive ψ) / row scale; without the 1 when it must be detected
+  std::vector<char> must_detect_;     // per target of the problem: no missed detection (w_i0 = 0)
   std::vector<double> exclusive_sum_; // li → Σ_exclusive ψ (unscaled)
   std::vector<double> row_scale_;     // li → max(1, max_j ψ)
   std::vector<int> meas_begin_;       // local shared id → gating targets (li, ascending)

@@ -426,8 +426,9 @@ bool Ehm::write_row(int p, MarginalTable& marginals) {
   if (!std::isfinite(sum) || (std::fetestexcept(FE_UNDERFLOW) && !(sum > 1e12 * row_error))) return false;
   const double inverse = 1.0 / sum;
   double* row = marginals.row(t);
-  const double stay = acc[0] * inverse / stay_weight_[li];
-  row[0] = stay / row_scale_[li];
+  // (A target that must be detected, without exclusive measurements, has no stay choice.)
+  const double stay = stay_weight_[li] > 0.0 ? acc[0] * inverse / stay_weight_[li] : 0.0;
+  row[0] = must_detect_[t] ? 0.0 : stay / row_scale_[li];
   if (exclusive_sum_[li] > 0.0) {
     for (int e = graph_.row_begin(t); e < graph_.row_end(t); ++e) {
       const int j = graph_.edge_measurement(e);

@@ -27,16 +27,19 @@ double ExactEnumeration::descend(int depth, double prefix) {
   const int target = order_[depth];
   const double scale = row_scale_[target];
   double* sums = accumulator_.data() + accumulator_row_[depth];
-  double below = descend(depth + 1, prefix * scale);  // missed detection: ψ_i(0) = 1, scaled
-  sums[0] += prefix * scale * below;
-  double total = scale * below;
+  double total = 0.0;
+  if (!must_detect_[target]) {
+    const double below = descend(depth + 1, prefix * scale);  // missed detection: ψ_i(0) = 1, scaled
+    sums[0] += prefix * scale * below;
+    total = scale * below;
+  }
   const int begin = graph_.row_begin(target);
   for (int e = begin; e < graph_.row_end(target); ++e) {
     const int j = graph_.edge_measurement(e);
     if (used_[j]) continue;
     used_[j] = 1;
     const double w = graph_.edge_weight(e) * scale;
-    below = descend(depth + 1, prefix * w);
+    const double below = descend(depth + 1, prefix * w);
     used_[j] = 0;
     sums[e - begin + 1] += prefix * w * below;
     total += w * below;
@@ -85,10 +88,16 @@ std::string_view ExactEnumeration::enumerate_cluster(int first, int last, Margin
 void ExactEnumeration::solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) {
   report.reset();
   graph_.build(problem, options_.threshold);
+  if (problem.has_must_detect_targets() && !must_detect_feasible(graph_, problem)) {
+    report.skipped = "infeasible";
+    return;
+  }
   graph_.find_clusters();
   const int n = graph_.targets();
   row_scale_.resize(n);
+  must_detect_.resize(n);
   for (int i = 0; i < n; ++i) {
+    must_detect_[i] = problem.must_detect(i);
     double largest = 1.0;
     for (int e = graph_.row_begin(i); e < graph_.row_end(i); ++e) largest = std::max(largest, graph_.edge_weight(e));
     row_scale_[i] = 1.0 / largest;

@@ -11,6 +11,8 @@
 // with status skipped:work_limit instead of running for hours, and where the scaled products
 // underflow (weights spanning more than double's range within one event) with
 // skipped:numerical rather than marginals computed from a partition function of 0.
+// A target that must be detected (a zero missed-detection weight, Pd = 1) has no missed branch;
+// a problem where no event gives every such target a measurement is skipped:infeasible.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -42,6 +44,7 @@ class ExactEnumeration final : public SingleScanSolver {
 
   explicit ExactEnumeration(const Options& options) : options_(options) {}
   void solve(const SingleScanProblem& problem, MarginalTable& marginals, SolveReport& report) override;
+  bool accepts_must_detect() const override { return true; }
 
  private:
   // Empty, or why the cluster was refused: "work_limit", or "numerical" where underflow could
@@ -52,6 +55,7 @@ class ExactEnumeration final : public SingleScanSolver {
   Options options_;
   AssociationGraph graph_;
   std::vector<double> row_scale_;     // 1 / max(1, max_j ψ_i(j)) per target
+  std::vector<char> must_detect_;     // per target: no missed branch
   std::vector<int> order_;            // targets of the current cluster
   std::vector<char> used_;            // per measurement
   std::vector<double> accumulator_;   // per depth: summed event weight per choice, [0] = missed,

@@ -25,7 +25,7 @@ SingleScanResult solve_single_scan(SingleScanSolver& solver, const SingleScanPro
   if (const std::string why = problem.validate(); !why.empty()) throw InputError("problem: " + why);
   SingleScanResult result;
   try {
-    solver.solve(problem, result.marginals, result.report);
+    if (!refuse_must_detect(solver, problem, result.report)) solver.solve(problem, result.marginals, result.report);
   } catch (const std::exception& error) {  // as the runner: a failed solve is a status
     result.report.skipped = "failed:" + one_line(error.what());
   }

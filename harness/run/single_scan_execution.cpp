@@ -52,7 +52,7 @@ void SingleScanExecution::run_item(SingleScanWorker& worker, long long item) con
     }
     const auto t0 = Clock::now();
     try {
-      worker.solvers[a]->solve(problem, worker.marginals[a], report);
+      if (!refuse_must_detect(*worker.solvers[a], problem, report)) worker.solvers[a]->solve(problem, worker.marginals[a], report);
     } catch (const std::exception& error) {  // e.g. std::bad_alloc: record it, go on
       report.skipped = "failed:" + one_line(error.what());
     }

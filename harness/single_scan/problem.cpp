@@ -22,8 +22,8 @@ std::string SingleScanProblem::validate() const {
     return fmt::format("{} clutter weights for {} measurements", clutter_weight.size(), psi.cols());
   }
   for (Eigen::Index i = 0; i < miss_weight.size(); ++i) {
-    if (!std::isfinite(miss_weight[i]) || miss_weight[i] <= 0.0) {
-      return fmt::format("missed-detection weight w[{}][0] = {} (must be finite and > 0)", i + 1, miss_weight[i]);
+    if (!std::isfinite(miss_weight[i]) || miss_weight[i] < 0.0) {
+      return fmt::format("missed-detection weight w[{}][0] = {} (must be finite and >= 0)", i + 1, miss_weight[i]);
     }
   }
   for (Eigen::Index j = 0; j < clutter_weight.size(); ++j) {

@@ -34,10 +34,17 @@ struct SingleScanProblem {
   int measurements() const { return static_cast<int>(psi.cols()); }
   bool has_unit_side_weights() const { return miss_weight.size() == 0 && clutter_weight.size() == 0; }
 
-  // ψ_i(j) in the ψ_i(0) = 1 normalisation of eq (9).
+  // A target that cannot be missed (w_i0 = 0: Pd = 1, as the Tracker Component Library and
+  // Stone Soup allow): every event with positive weight assigns it a measurement.
+  bool must_detect(int i) const { return miss_weight.size() != 0 && miss_weight[i] == 0.0; }
+  bool has_must_detect_targets() const { return miss_weight.size() != 0 && (miss_weight.array() == 0.0).any(); }
+
+  // ψ_i(j) in the ψ_i(0) = 1 normalisation of eq (9); for a target that must be detected the
+  // row is left unscaled by its (zero) miss weight, its ψ_i(0) being 0 instead (scaling such a
+  // row by any positive factor leaves the posterior unchanged, as every event takes one entry).
   double normalized_weight(int i, int j) const {
     double w = psi(i, j);
-    if (miss_weight.size() != 0) w /= miss_weight[i];
+    if (miss_weight.size() != 0 && miss_weight[i] != 0.0) w /= miss_weight[i];
     if (clutter_weight.size() != 0) w /= clutter_weight[j];
     return w;
   }
@@ -49,7 +56,8 @@ struct SingleScanProblem {
   static constexpr double kOutOfRangeSum = 0x1p1020;
 
   // Empty if the problem is well formed, else what is wrong (negative, NaN or infinite
-  // weights, side-weight vectors of the wrong size or not strictly positive).
+  // weights, side-weight vectors of the wrong size, a negative missed-detection weight, a
+  // clutter weight that is not strictly positive).
   std::string validate() const;
 };
 

@@ -4,6 +4,13 @@
 
 namespace dabench {
 
+bool refuse_must_detect(const SingleScanSolver& solver, const SingleScanProblem& problem, SolveReport& report) {
+  if (solver.accepts_must_detect() || !problem.has_must_detect_targets()) return false;
+  report.reset();
+  report.skipped = "zero_miss_weight";
+  return true;
+}
+
 void reject_non_distribution(const SingleScanProblem& problem, const MarginalTable& marginals, SolveReport& report) {
   if (!report.skipped.empty()) return;
   constexpr double kRowTolerance = 1e-6;  // far above rounding, far below any real mass

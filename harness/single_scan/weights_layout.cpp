@@ -29,10 +29,11 @@ class Entries {
     if (!log_ && value < 0.0) throw error(row, column, fmt::format("weight {} is negative", value));
     return value;
   }
-  // A missed-detection or clutter weight, which must not be 0.
-  double side_weight(Eigen::Index row, Eigen::Index column, const char* what) const {
+  // A clutter weight, which must not be 0 (a measurement that must come from a target is not
+  // a model dabench's algorithms take).
+  double clutter_weight(Eigen::Index row, Eigen::Index column) const {
     const double value = weight(row, column);
-    if (is_zero(value)) throw error(row, column, fmt::format("the {} weight is 0 (it must be > 0)", what));
+    if (is_zero(value)) throw error(row, column, "the clutter weight is 0 (it must be > 0)");
     return value;
   }
   bool is_zero(double value) const { return log_ ? value == -std::numeric_limits<double>::infinity() : value == 0.0; }
@@ -109,12 +110,12 @@ SingleScanProblem problem_from_weights(const Eigen::Ref<const RowMatrix>& matrix
   const bool has_miss = format.layout != WeightsLayout::psi, has_clutter = format.layout == WeightsLayout::matlab;
   Vector miss = Vector::Constant(has_miss ? n : 0, none), clutter = Vector::Constant(has_clutter ? m : 0, none);
   for (Eigen::Index i = 0; i < n; ++i) {
-    if (format.layout == WeightsLayout::stonesoup) miss[i] = entries.side_weight(i, 0, "missed-detection");
-    if (format.layout == WeightsLayout::matlab) miss[i] = entries.side_weight(0, i + 1, "missed-detection");
+    if (format.layout == WeightsLayout::stonesoup) miss[i] = entries.weight(i, 0);
+    if (format.layout == WeightsLayout::matlab) miss[i] = entries.weight(0, i + 1);
     if (format.layout == WeightsLayout::tcl) {
       for (Eigen::Index k = 0; k < n; ++k) {
         if (k == i) {
-          miss[i] = entries.side_weight(i, m + k, "missed-detection");
+          miss[i] = entries.weight(i, m + k);
         } else if (!entries.is_zero(entries.weight(i, m + k))) {
           throw entries.error(i, m + k, "an off-diagonal entry of the missed-detection block must be 0");
         }
@@ -122,19 +123,44 @@ SingleScanProblem problem_from_weights(const Eigen::Ref<const RowMatrix>& matrix
     }
   }
   if (format.layout == WeightsLayout::matlab) {
-    for (Eigen::Index j = 0; j < m; ++j) clutter[j] = entries.side_weight(j + 1, 0, "clutter");
+    for (Eigen::Index j = 0; j < m; ++j) clutter[j] = entries.clutter_weight(j + 1, 0);
+  }
+  // What each row is divided by: its missed-detection weight, or for a target that must be
+  // detected (w_i0 = 0) its largest weight, which keeps the row in range and leaves the
+  // posterior unchanged (every event takes exactly one of the row's entries).
+  // Where w_ij sits in the user's matrix.
+  const auto position = [&format](Eigen::Index i, Eigen::Index j) {
+    if (format.layout == WeightsLayout::matlab) return std::pair<Eigen::Index, Eigen::Index>{j + 1, i + 1};
+    return std::pair<Eigen::Index, Eigen::Index>{i, format.layout == WeightsLayout::stonesoup ? j + 1 : j};
+  };
+  Vector row_divisor = miss;
+  for (Eigen::Index i = 0; i < miss.size(); ++i) {
+    if (!entries.is_zero(miss[i])) continue;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const auto [row, column] = position(i, j);
+      const double w = entries.weight(row, column);
+      if (j == 0 || w > row_divisor[i]) row_divisor[i] = w;
+    }
+    if (m == 0 || entries.is_zero(row_divisor[i])) row_divisor[i] = none;
   }
   SingleScanProblem problem;
   problem.psi.resize(n, m);
   for (Eigen::Index i = 0; i < n; ++i) {
     for (Eigen::Index j = 0; j < m; ++j) {
-      // Where w_ij sits in the user's matrix.
-      const bool transposed = format.layout == WeightsLayout::matlab;
-      const Eigen::Index row = transposed ? j + 1 : i;
-      const Eigen::Index column = transposed ? i + 1 : format.layout == WeightsLayout::stonesoup ? j + 1 : j;
-      const double psi = entries.relative(entries.weight(row, column), has_miss ? miss[i] : none, has_clutter ? clutter[j] : none);
+      const auto [row, column] = position(i, j);
+      const double psi = entries.relative(entries.weight(row, column), has_miss ? row_divisor[i] : none, has_clutter ? clutter[j] : none);
       if (!std::isfinite(psi)) throw entries.error(row, column, "the weight relative to its missed detection and clutter overflows");
       problem.psi(i, j) = psi;
+    }
+  }
+  // Targets with a zero missed-detection weight keep it (w_i0 = 0 beside the others' 1): the
+  // problem says they must be detected (SingleScanProblem::must_detect).
+  bool must_detect = false;
+  for (Eigen::Index i = 0; i < miss.size(); ++i) must_detect = must_detect || entries.is_zero(miss[i]);
+  if (must_detect) {
+    problem.miss_weight = Vector::Ones(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (entries.is_zero(miss[i])) problem.miss_weight[i] = 0.0;
     }
   }
   return problem;

@@ -12,6 +12,18 @@
 //                          tracks; row 0 holds the tracks' missed detections w_i0, column 0 the
 //                          measurements' clutter w_0j, entry (0, 0) is ignored.
 // With `log`, entries are natural logarithms of the weights (−inf for a weight of 0).
+// A missed-detection weight of 0 (Pd = 1: the Tracker Component Library and Stone Soup accept
+// it) makes the target one that must be detected (SingleScanProblem::must_detect): its row is
+// kept at the user's scale with w_i0 = 0, and only the exact methods that enumerate events take
+// such a problem (the others report skipped:zero_miss_weight). A clutter weight of 0 is refused.
+//
+// What a layout means for the approximations: dividing out w_i0 and w_0j leaves the posterior
+// over events, so every exact method's marginals are the same in any layout. An approximation
+// is defined on ψ = w_ij / (w_i0 · w_0j) with ψ_i(0) = 1 (eq 9), so it too sees one problem
+// whatever the layout — but not always the problem another library's approximation of the same
+// name sees: a method whose formula uses the raw w_i0 (the TCL's and Stone Soup's cheap JPDA,
+// for instance, normalise by the missed-detection entries as given) gives other numbers when
+// the w_i0 differ between targets, by construction, not by error.
 #include <string>
 #include <string_view>
 
@@ -34,9 +46,9 @@ const char* weights_layout_name(WeightsLayout layout);
 const char* weights_layout_shape(WeightsLayout layout);
 
 // The ψ problem of `matrix` read in `format`. InputError "WHERE:ROW: column C: reason" (1-based
-// positions in `matrix`) for a NaN, infinite (+inf in log form) or negative entry, a missed-detection or
-// clutter weight of 0 (the event would be impossible, not a weight to divide by), a non-zero
-// off-diagonal entry of tcl's block, a shape the layout cannot have, or a ψ that overflows.
+// positions in `matrix`) for a NaN, infinite (+inf in log form) or negative entry, a clutter
+// weight of 0, a non-zero off-diagonal entry of tcl's block, a shape the layout cannot have, or
+// a ψ that overflows.
 // `matrix` may map the caller's memory (e.g. a numpy array): it is read, not copied.
 SingleScanProblem problem_from_weights(const Eigen::Ref<const RowMatrix>& matrix, const WeightsFormat& format,
                                        const std::string& where);

@@ -26,8 +26,8 @@ def test_bad_weights(weights, message):
 def test_bad_layouts():
     with pytest.raises(ValueError, match=r"^unknown weights layout 'pyehm' \(psi, stonesoup, tcl or matlab\)"):
         dabench.marginals(np.ones((2, 3)), layout="pyehm")
-    with pytest.raises(ValueError, match="^weights:1: column 1: the missed-detection weight is 0"):
-        dabench.marginals(np.array([[0.0, 1.0]]), layout="stonesoup")
+    with pytest.raises(ValueError, match="^weights:2: column 1: the clutter weight is 0"):
+        dabench.marginals(np.array([[1.0, 1.0], [0.0, 2.0]]), layout="matlab")
     with pytest.raises(ValueError, match="off-diagonal entry of the missed-detection block must be 0"):
         dabench.marginals(np.array([[1.0, 1.0, 0.5], [1.0, 0.0, 1.0]]), layout="tcl")
 
@@ -64,3 +64,17 @@ def test_messages_match_the_command_line(tmp_path, dabench_program):
         with pytest.raises(ValueError) as python:
             dabench.marginals(np.ones((2, 2)), spec)
         assert cli.stderr.strip() == f"dabench: {python.value}"
+
+
+def test_zero_missed_detection_weight():
+    # Pd = 1 (a zero missed-detection weight, as Stone Soup and the TCL accept): the target takes
+    # a measurement in every event; exact methods answer, the others refuse with a status.
+    weights = np.array([[0.0, 0.2, 0.4, 0.0], [0.5, 0.3, 0.0, 0.6]])
+    marginals = dabench.marginals(weights, "exact", layout="stonesoup")
+    assert marginals[0, 0] == 0.0
+    assert marginals[0, 1] == pytest.approx(0.22 / 0.78, rel=1e-14)
+    assert np.allclose(dabench.marginals(weights, "ehm", layout="stonesoup"), marginals, rtol=1e-14, atol=0)
+    with pytest.raises(dabench.SkippedError, match="bp: skipped:zero_miss_weight"):
+        dabench.marginals(weights, "bp", layout="stonesoup")
+    with pytest.raises(dabench.SkippedError, match="exact: skipped:infeasible"):
+        dabench.marginals(np.array([[0.0, 1.0], [0.0, 1.0]]), "exact", layout="stonesoup")

@@ -267,6 +267,27 @@ TEST_CASE("cli solve: exact past its work limit exits 3 with a skipped line", "[
   CHECK(snapshot(dir.work()) == before);
 }
 
+// A zero missed-detection weight in the tcl layout (Pd = 1: the TCL answers such problems): exact
+// and ehm give the marginals with that target always detected; bp, in the ψ_i(0) = 1 form,
+// exits 3 with skipped:zero_miss_weight; a problem no event can satisfy, skipped:infeasible.
+TEST_CASE("cli solve: a zero missed-detection weight (tcl) is a target that must be detected", "[cli][solve]") {
+  TempDir dir;
+  dir.write("tcl.csv", "0.2,0.4,0,0,0\n0.3,0,0.6,0,0.5\n");  // target 1: Pd = 1
+  dir.write("infeasible.csv", "1,0,0\n1,0,0\n");              // both must take measurement 1
+  for (const char* spec : {"exact", "ehm"}) {
+    const CliResult result = run_ok(dir, {"solve", "--algorithm", spec, "--weights", "tcl.csv", "--layout", "tcl"});
+    const auto rows = check_solve_csv(result.out, 2, 3);
+    CHECK(rows[0].probability == 0.0);                                  // p(a_1 = 0)
+    CHECK(rows[1].probability == Approx(0.22 / 0.78).epsilon(1e-14));  // hand-computed: Z = 0.78
+  }
+  const CliResult bp = run_dabench(dir, {"solve", "--algorithm", "bp", "--weights", "tcl.csv", "--layout", "tcl"});
+  CHECK(bp.status == 3);
+  CHECK(bp.err == "dabench: bp: skipped:zero_miss_weight (the algorithm refused this problem)\n");
+  const CliResult none = run_dabench(dir, {"solve", "--algorithm", "exact", "--weights", "infeasible.csv", "--layout", "tcl"});
+  CHECK(none.status == 3);
+  CHECK(none.err == "dabench: exact: skipped:infeasible (the algorithm refused this problem)\n");
+}
+
 // ---------------------------------------------------------------------------------------------
 // solve: output
 

@@ -131,7 +131,8 @@ TEST_CASE("weights layouts: malformed matrices are one-line errors naming row an
   const double inf = std::numeric_limits<double>::infinity();
   RowMatrix stonesoup(1, 3);
   stonesoup << 0.0, 1.0, 2.0;
-  CHECK_THAT(error(stonesoup, WeightsLayout::stonesoup), Catch::Contains("w.csv:1: column 1") && Catch::Contains("missed-detection weight is 0"));
+  // A missed-detection weight of 0 is a target that must be detected (test_must_detect.cpp).
+  CHECK(dabench::problem_from_weights(stonesoup, {WeightsLayout::stonesoup, false}, "w.csv").must_detect(0));
   RowMatrix tcl(2, 3);
   tcl << 1.0, 0.5, 0.3, 1.0, 0.0, 0.5;
   CHECK_THAT(error(tcl, WeightsLayout::tcl), Catch::Contains("w.csv:1: column 3") && Catch::Contains("off-diagonal"));
