@@ -214,15 +214,15 @@ int command_list(int argc, char** argv) {
     }
   };
   out += "Algorithms (SPEC = name or name:key=value,...):\n";
-  describe(single_scan_registry());
+  describe(single_scan_algorithm_registry());
   out += "\nMulti-scan algorithms (for multi-scan scenarios):\n";
-  describe(multi_scan_registry());
+  describe(multi_scan_algorithm_registry());
   out += "\nTrackers (for tracking scenarios):\n";
-  describe(tracker_registry());
+  describe(tracking_tracker_registry());
   out += "\nTrack-before-detect trackers (for track-before-detect scenarios; frame by frame):\n";
   describe(tbd_tracker_registry());
   out += "\nScenarios (parameters settable in an experiment's [scenario] and [sweep] sections):\n";
-  describe(scenario_registry());
+  describe(single_scan_scenario_registry());
   out += "\nMulti-scan scenarios (run multi-scan algorithms; metrics against the truth):\n";
   describe(multi_scan_scenario_registry());
   out += "\nTracking scenarios (whole runs of K scans, for trackers):\n";

@@ -53,9 +53,9 @@ void check_kind(const std::string& kind) {
 py::list algorithms(const std::string& kind) {
   if (!kind.empty()) check_kind(kind);
   py::list out;
-  if (kind.empty() || kind == "single_scan") describe(out, single_scan_registry(), "single_scan");
-  if (kind.empty() || kind == "multi_scan") describe(out, multi_scan_registry(), "multi_scan");
-  if (kind.empty() || kind == "tracking") describe(out, tracker_registry(), "tracking");
+  if (kind.empty() || kind == "single_scan") describe(out, single_scan_algorithm_registry(), "single_scan");
+  if (kind.empty() || kind == "multi_scan") describe(out, multi_scan_algorithm_registry(), "multi_scan");
+  if (kind.empty() || kind == "tracking") describe(out, tracking_tracker_registry(), "tracking");
   if (kind.empty() || kind == "tbd") describe(out, tbd_tracker_registry(), "tbd");
   return out;
 }
@@ -63,7 +63,7 @@ py::list algorithms(const std::string& kind) {
 py::list scenarios(const std::string& kind) {
   if (!kind.empty()) check_kind(kind);
   py::list out;
-  if (kind.empty() || kind == "single_scan") describe(out, scenario_registry(), "single_scan");
+  if (kind.empty() || kind == "single_scan") describe(out, single_scan_scenario_registry(), "single_scan");
   if (kind.empty() || kind == "multi_scan") describe(out, multi_scan_scenario_registry(), "multi_scan");
   if (kind.empty() || kind == "tracking") describe(out, tracking_scenario_registry(), "tracking");
   if (kind.empty() || kind == "tbd") describe(out, tbd_scenario_registry(), "tbd");

@@ -162,7 +162,7 @@ void register_algorithm(const std::string& name, const py::object& function, con
   if (!valid_name(name)) {
     throw InputError(fmt::format("register: '{}' is not a name (a letter, then letters, digits, '-', '_' or '.')", name));
   }
-  if (single_scan_registry().find(name) != nullptr && python_names().count(name) == 0) {
+  if (single_scan_algorithm_registry().find(name) != nullptr && python_names().count(name) == 0) {
     throw InputError(fmt::format("register: '{}' is a built-in algorithm", name));
   }
   if (!PyCallable_Check(function.ptr())) throw py::type_error(fmt::format("register: {}: the function is not callable", name));
@@ -193,7 +193,7 @@ void register_algorithm(const std::string& name, const py::object& function, con
         for (const auto& param : bound.entries()) out.push_back({param.key, ParamList::format(param)});
         return out;
       }};
-  single_scan_registry().replace(std::move(entry));
+  single_scan_algorithm_registry().replace(std::move(entry));
   python_names().insert(name);
   ++g_generation;
 }
@@ -201,7 +201,7 @@ void register_algorithm(const std::string& name, const py::object& function, con
 void unregister_algorithm(const std::string& name) {
   if (run_in_progress()) throw InputError("unregister: a run is in progress");
   if (python_names().erase(name) == 0) throw InputError(fmt::format("unregister: '{}' was not registered from Python", name));
-  single_scan_registry().remove(name);
+  single_scan_algorithm_registry().remove(name);
   ++g_generation;
 }
 

@@ -245,9 +245,9 @@ py::dict draw(const std::string& scenario, std::optional<std::uint64_t> seed, st
       }
     }
   }
-  const auto* entry = scenario_registry().find(name);
+  const auto* entry = single_scan_scenario_registry().find(name);
   if (entry == nullptr) {
-    throw InputError(fmt::format("draw: unknown single-scan scenario '{}' (known: {})", name, scenario_registry().names()));
+    throw InputError(fmt::format("draw: unknown single-scan scenario '{}' (known: {})", name, single_scan_scenario_registry().names()));
   }
   const auto generator = entry->create(settings);
   ScenarioSample sample;

@@ -158,11 +158,11 @@ ConvexVariationalSchedule MsbpMethod::schedule(const Options& options) {
   return schedule;
 }
 
-DABENCH_REGISTER_MULTI_SCAN(ConvexVariational);
-DABENCH_REGISTER_MULTI_SCAN(ConvexVariationalSequential);
-DABENCH_REGISTER_MULTI_SCAN(ConvexVariationalHeuristic);
-DABENCH_REGISTER_MULTI_SCAN(ConvexVariationalSequentialHeuristic);
-DABENCH_REGISTER_MULTI_SCAN(ConvexVariationalSingleSweep);
-DABENCH_REGISTER_MULTI_SCAN(MultipleScanBp);
+DABENCH_REGISTER_MULTI_SCAN_ALGORITHM(ConvexVariational);
+DABENCH_REGISTER_MULTI_SCAN_ALGORITHM(ConvexVariationalSequential);
+DABENCH_REGISTER_MULTI_SCAN_ALGORITHM(ConvexVariationalHeuristic);
+DABENCH_REGISTER_MULTI_SCAN_ALGORITHM(ConvexVariationalSequentialHeuristic);
+DABENCH_REGISTER_MULTI_SCAN_ALGORITHM(ConvexVariationalSingleSweep);
+DABENCH_REGISTER_MULTI_SCAN_ALGORITHM(MultipleScanBp);
 
 }  // namespace dabench

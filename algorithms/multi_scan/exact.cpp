@@ -129,6 +129,6 @@ void MultiScanExact::solve(const MultiScanProblem& problem, MultiScanBeliefs& be
   write_beliefs(problem, beliefs);
 }
 
-DABENCH_REGISTER_MULTI_SCAN(MultiScanExact);
+DABENCH_REGISTER_MULTI_SCAN_ALGORITHM(MultiScanExact);
 
 }  // namespace dabench

@@ -59,6 +59,6 @@ void JpdaBp::solve(const MultiScanProblem& problem, MultiScanBeliefs& beliefs, S
   }
 }
 
-DABENCH_REGISTER_MULTI_SCAN(JpdaBp);
+DABENCH_REGISTER_MULTI_SCAN_ALGORITHM(JpdaBp);
 
 }  // namespace dabench

@@ -70,6 +70,6 @@ void BakhtiarAlaviAmoozegar::solve(const SingleScanProblem& problem, MarginalTab
   }
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(BakhtiarAlaviAmoozegar);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(BakhtiarAlaviAmoozegar);
 
 }  // namespace dabench

@@ -337,6 +337,6 @@ void BeliefPropagation::solve(const SingleScanProblem& problem, MarginalTable& m
   write_beliefs(problem.targets(), problem.measurements(), marginals);
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(BeliefPropagation);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(BeliefPropagation);
 
 }  // namespace dabench

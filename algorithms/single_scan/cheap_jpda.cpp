@@ -64,7 +64,7 @@ void CheapJpdaSolver::solve(const SingleScanProblem& problem, MarginalTable& mar
   }
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(CheapJpda);
-DABENCH_REGISTER_SINGLE_SCAN(ModifiedCheapJpda);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(CheapJpda);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(ModifiedCheapJpda);
 
 }  // namespace dabench

@@ -253,6 +253,6 @@ void CorrelationDecay::solve(const SingleScanProblem& problem, MarginalTable& ma
   }
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(CorrelationDecay);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(CorrelationDecay);
 
 }  // namespace dabench

@@ -261,6 +261,6 @@ int Ehm::build_tables() {
   return widest;
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(Ehm);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(Ehm);
 
 }  // namespace dabench

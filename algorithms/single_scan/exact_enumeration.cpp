@@ -114,6 +114,6 @@ void ExactEnumeration::solve(const SingleScanProblem& problem, MarginalTable& ma
   }
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(ExactEnumeration);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(ExactEnumeration);
 
 }  // namespace dabench

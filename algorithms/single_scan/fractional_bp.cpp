@@ -331,6 +331,6 @@ void FractionalBp::solve(const SingleScanProblem& problem, MarginalTable& margin
   marginals.view() = kernel_.target_marginals();
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(FractionalBp);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(FractionalBp);
 
 }  // namespace dabench

@@ -724,6 +724,6 @@ void JunctionTree::solve(const SingleScanProblem& problem, MarginalTable& margin
   log_partition_ = std::log(log_mantissa_) + static_cast<double>(log_exponent_) * std::log(2.0) + log_extra_;
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(JunctionTree);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(JunctionTree);
 
 }  // namespace dabench

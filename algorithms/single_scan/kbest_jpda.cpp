@@ -78,6 +78,6 @@ void KBestJpda::solve(const SingleScanProblem& problem, MarginalTable& marginals
   report.captured_mass = std::isnan(log_captured) ? log_captured : std::min(1.0, std::exp(log_captured));
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(KBestJpda);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(KBestJpda);
 
 }  // namespace dabench

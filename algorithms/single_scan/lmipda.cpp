@@ -87,6 +87,6 @@ void Lmipda::solve(const SingleScanProblem& problem, MarginalTable& marginals, S
   }
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(Lmipda);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(Lmipda);
 
 }  // namespace dabench

@@ -114,6 +114,6 @@ void MapAssociation::solve(const SingleScanProblem& problem, MarginalTable& marg
   for (int i = 0; i < graph_.targets(); ++i) marginals(i, assignment_[i] + 1) = 1.0;
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(MapAssociation);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(MapAssociation);
 
 }  // namespace dabench

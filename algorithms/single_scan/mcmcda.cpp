@@ -153,6 +153,6 @@ void Mcmcda::solve(const SingleScanProblem& problem, MarginalTable& marginals, S
   chain_.write_frequencies(marginals);
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(Mcmcda);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(Mcmcda);
 
 }  // namespace dabench

@@ -204,6 +204,6 @@ void PermanentMarginals::solve(const SingleScanProblem& problem, MarginalTable& 
   }
 }
 
-DABENCH_REGISTER_SINGLE_SCAN(PermanentMarginals);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(PermanentMarginals);
 
 }  // namespace dabench

@@ -278,6 +278,6 @@ void JdtVbTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveRe
   tracks.objective = report.free_energy;
 }
 
-DABENCH_REGISTER_TRACKER(JdtVbTracker);
+DABENCH_REGISTER_TRACKING_TRACKER(JdtVbTracker);
 
 }  // namespace dabench

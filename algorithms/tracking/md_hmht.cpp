@@ -525,7 +525,7 @@ void MdHmhtTracker::run(const TrackingProblem& problem, TrackSet& tracks, SolveR
   }
 }
 
-DABENCH_REGISTER_TRACKER(MdHmhtTracker);
+DABENCH_REGISTER_TRACKING_TRACKER(MdHmhtTracker);
 
 void md_hmht::run_observed(const MdHmhtOptions& options, const TrackingProblem& problem, TrackSet& tracks,
                            const ScanObserver& observer) {

@@ -649,6 +649,6 @@ void MultipathTrackFusion::run(const TrackingProblem& problem, TrackSet& tracks,
   MptfRun(options_, problem).run(tracks);
 }
 
-DABENCH_REGISTER_TRACKER(MultipathTrackFusion);
+DABENCH_REGISTER_TRACKING_TRACKER(MultipathTrackFusion);
 
 }  // namespace dabench

@@ -10,7 +10,7 @@
 namespace dabench::bench {
 
 inline std::vector<SingleScanProblem> grid_pool(std::vector<KeyValue> settings, int count, std::uint64_t seed = 7) {
-  const auto scenario = scenario_registry().find("grid")->create(settings);
+  const auto scenario = single_scan_scenario_registry().find("grid")->create(settings);
   std::vector<SingleScanProblem> pool;
   ScenarioSample sample;
   for (int k = 0; k < count; ++k) {

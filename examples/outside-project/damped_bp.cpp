@@ -59,6 +59,6 @@ void DampedBp::solve(const dabench::SingleScanProblem& problem, dabench::Margina
 }
 
 // One line makes `damped-bp` a SPEC like any built-in algorithm's (dabench list, run, solve).
-DABENCH_REGISTER_SINGLE_SCAN(DampedBp);
+DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(DampedBp);
 
 }  // namespace outside

@@ -6,7 +6,7 @@
 
 namespace dabench {
 
-Registry<MultiScanSolver>& multi_scan_registry() {
+Registry<MultiScanSolver>& multi_scan_algorithm_registry() {
   static Registry<MultiScanSolver> registry;
   return registry;
 }
@@ -18,10 +18,10 @@ Registry<MultiScanScenario>& multi_scan_scenario_registry() {
 
 std::unique_ptr<MultiScanSolver> make_multi_scan_solver(std::string_view spec_text) {
   const Spec spec = parse_spec(spec_text);
-  const auto* entry = multi_scan_registry().find(spec.name);
+  const auto* entry = multi_scan_algorithm_registry().find(spec.name);
   if (entry == nullptr) {
     throw InputError(fmt::format("unknown multi-scan algorithm '{}' (known: {})", spec.name,
-                                 multi_scan_registry().names()));
+                                 multi_scan_algorithm_registry().names()));
   }
   return entry->create(spec.settings);
 }

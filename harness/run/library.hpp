@@ -12,8 +12,8 @@
 //   RunOutcome outcome = run_experiment(run);  // InputError for anything wrong before it starts
 //
 // An algorithm written outside dabench registers itself with one line in its source file,
-// DABENCH_REGISTER_SINGLE_SCAN(MyAlgorithm) (multi scan: DABENCH_REGISTER_MULTI_SCAN, trackers:
-// DABENCH_REGISTER_TRACKER; see harness/<kind>/registry.hpp for what the class provides). Its
+// DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(MyAlgorithm) (multi scan: DABENCH_REGISTER_MULTI_SCAN_ALGORITHM, trackers:
+// DABENCH_REGISTER_TRACKING_TRACKER; see harness/<kind>/registry.hpp for what the class provides). Its
 // object file must be linked into the program itself (or as an OBJECT library or a whole
 // archive): the registration is a static object that nothing references.
 #include <memory>

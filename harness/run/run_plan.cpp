@@ -49,9 +49,9 @@ std::string kind_hint(const std::string& spec, RunKind kind, const std::string& 
   const auto hint = [&](std::string_view what) {
     return fmt::format(" ('{}' is a {}; scenario '{}' is {})", name, what, scenario, kind_name(kind));
   };
-  if (kind != RunKind::single_scan && single_scan_registry().find(name) != nullptr) return hint("single-scan algorithm");
-  if (kind != RunKind::multi_scan && multi_scan_registry().find(name) != nullptr) return hint("multi-scan algorithm");
-  if (kind != RunKind::tracking && tracker_registry().find(name) != nullptr) return hint("tracker");
+  if (kind != RunKind::single_scan && single_scan_algorithm_registry().find(name) != nullptr) return hint("single-scan algorithm");
+  if (kind != RunKind::multi_scan && multi_scan_algorithm_registry().find(name) != nullptr) return hint("multi-scan algorithm");
+  if (kind != RunKind::tracking && tracking_tracker_registry().find(name) != nullptr) return hint("tracker");
   if (kind != RunKind::tbd && tbd_tracker_registry().find(name) != nullptr) return hint("track-before-detect tracker");
   return {};
 }
@@ -213,12 +213,12 @@ RunPlan make_run_plan(Experiment loaded, const RunOptions& options) {
       plan.shard ? fmt::format("{}-shard-{}-of-{}", experiment.output, plan.shard->index, plan.shard->count)
                  : experiment.output);
 
-  const auto* single_scan = scenario_registry().find(experiment.scenario);
+  const auto* single_scan = single_scan_scenario_registry().find(experiment.scenario);
   const auto* multi_scan = multi_scan_scenario_registry().find(experiment.scenario);
   const auto* tracking = tracking_scenario_registry().find(experiment.scenario);
   const auto* tbd = tbd_scenario_registry().find(experiment.scenario);
   if (single_scan == nullptr && multi_scan == nullptr && tracking == nullptr && tbd == nullptr) {
-    std::string known = scenario_registry().names();
+    std::string known = single_scan_scenario_registry().names();
     for (const std::string& more : {multi_scan_scenario_registry().names(), tracking_scenario_registry().names(),
                                     tbd_scenario_registry().names()}) {
       if (!more.empty()) known += ", " + more;

@@ -223,7 +223,7 @@ double with_execution(const RunPlan& plan, Body&& body) {
   if (plan.kind == RunKind::multi_scan) {
     return body(MultiScanExecution(plan, point_scenarios(multi_scan_scenario_registry(), plan)));
   }
-  return body(SingleScanExecution(plan, point_scenarios(scenario_registry(), plan)));
+  return body(SingleScanExecution(plan, point_scenarios(single_scan_scenario_registry(), plan)));
 }
 
 // Runs a chunk's units into worker.texts (cleared first) and their times into unit_seconds.

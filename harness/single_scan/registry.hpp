@@ -1,8 +1,8 @@
 #pragma once
-// The registries of single-scan algorithms (DABENCH_REGISTER_SINGLE_SCAN) and single-scan scenarios (DABENCH_REGISTER_SCENARIO).
+// The registries of single-scan algorithms (DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM) and single-scan scenarios (DABENCH_REGISTER_SINGLE_SCAN_SCENARIO).
 // An algorithm registers itself with one line at the end of its source file, e.g.
 //
-//   DABENCH_REGISTER_SINGLE_SCAN(MyAlgorithm);
+//   DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(MyAlgorithm);
 //
 // (see harness/core/registry.hpp for what the class provides).
 #include <memory>
@@ -14,28 +14,28 @@
 
 namespace dabench {
 
-Registry<SingleScanSolver>& single_scan_registry();
-Registry<SingleScanScenario>& scenario_registry();
+Registry<SingleScanSolver>& single_scan_algorithm_registry();
+Registry<SingleScanScenario>& single_scan_scenario_registry();
 
 // Parses a SPEC ("name", "name:key=value,...") and builds the object; throws InputError for an
 // unknown name, an unknown key or an invalid value.
 std::unique_ptr<SingleScanSolver> make_single_scan_solver(std::string_view spec);
 
 template <class Solver>
-struct SingleScanRegistration {
-  SingleScanRegistration() {
-    single_scan_registry().add(make_registry_entry<Solver, SingleScanSolver>());
+struct SingleScanAlgorithmRegistration {
+  SingleScanAlgorithmRegistration() {
+    single_scan_algorithm_registry().add(make_registry_entry<Solver, SingleScanSolver>());
   }
 };
 
 template <class Scenario>
-struct ScenarioRegistration {
-  ScenarioRegistration() { scenario_registry().add(make_registry_entry<Scenario, SingleScanScenario>()); }
+struct SingleScanScenarioRegistration {
+  SingleScanScenarioRegistration() { single_scan_scenario_registry().add(make_registry_entry<Scenario, SingleScanScenario>()); }
 };
 
 }  // namespace dabench
 
-#define DABENCH_REGISTER_SINGLE_SCAN(Solver) \
-  static const ::dabench::SingleScanRegistration<Solver> dabench_single_scan_registration_##Solver {}
-#define DABENCH_REGISTER_SCENARIO(Scenario) \
-  static const ::dabench::ScenarioRegistration<Scenario> dabench_scenario_registration_##Scenario {}
+#define DABENCH_REGISTER_SINGLE_SCAN_ALGORITHM(Solver) \
+  static const ::dabench::SingleScanAlgorithmRegistration<Solver> dabench_single_scan_registration_##Solver {}
+#define DABENCH_REGISTER_SINGLE_SCAN_SCENARIO(Scenario) \
+  static const ::dabench::SingleScanScenarioRegistration<Scenario> dabench_scenario_registration_##Scenario {}

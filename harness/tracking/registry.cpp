@@ -6,7 +6,7 @@
 
 namespace dabench {
 
-Registry<Tracker>& tracker_registry() {
+Registry<Tracker>& tracking_tracker_registry() {
   static Registry<Tracker> registry;
   return registry;
 }
@@ -18,9 +18,9 @@ Registry<TrackingScenario>& tracking_scenario_registry() {
 
 std::unique_ptr<Tracker> make_tracker(std::string_view spec_text) {
   const Spec spec = parse_spec(spec_text);
-  const auto* entry = tracker_registry().find(spec.name);
+  const auto* entry = tracking_tracker_registry().find(spec.name);
   if (entry == nullptr) {
-    const std::string known = tracker_registry().names();
+    const std::string known = tracking_tracker_registry().names();
     throw InputError(fmt::format("unknown tracker '{}' (known: {})", spec.name, known.empty() ? "none registered" : known));
   }
   return entry->create(spec.settings);

@@ -1,8 +1,8 @@
 #pragma once
-// The registries of trackers (DABENCH_REGISTER_TRACKER) and tracking scenarios (DABENCH_REGISTER_TRACKING_SCENARIO).
+// The registries of trackers (DABENCH_REGISTER_TRACKING_TRACKER) and tracking scenarios (DABENCH_REGISTER_TRACKING_SCENARIO).
 // An algorithm registers itself with one line at the end of its source file, e.g.
 //
-//   DABENCH_REGISTER_TRACKER(MyAlgorithm);
+//   DABENCH_REGISTER_TRACKING_TRACKER(MyAlgorithm);
 //
 // (see harness/core/registry.hpp for what the class provides).
 #include <memory>
@@ -14,7 +14,7 @@
 
 namespace dabench {
 
-Registry<Tracker>& tracker_registry();
+Registry<Tracker>& tracking_tracker_registry();
 Registry<TrackingScenario>& tracking_scenario_registry();
 
 // Parses a SPEC ("name", "name:key=value,...") and builds the object; throws InputError for an
@@ -22,8 +22,8 @@ Registry<TrackingScenario>& tracking_scenario_registry();
 std::unique_ptr<Tracker> make_tracker(std::string_view spec);
 
 template <class Made>
-struct TrackerRegistration {
-  TrackerRegistration() { tracker_registry().add(make_registry_entry<Made, Tracker>()); }
+struct TrackingTrackerRegistration {
+  TrackingTrackerRegistration() { tracking_tracker_registry().add(make_registry_entry<Made, Tracker>()); }
 };
 
 template <class Scenario>
@@ -35,7 +35,7 @@ struct TrackingScenarioRegistration {
 
 }  // namespace dabench
 
-#define DABENCH_REGISTER_TRACKER(Made) \
-  static const ::dabench::TrackerRegistration<Made> dabench_tracker_registration_##Made {}
+#define DABENCH_REGISTER_TRACKING_TRACKER(Made) \
+  static const ::dabench::TrackingTrackerRegistration<Made> dabench_tracker_registration_##Made {}
 #define DABENCH_REGISTER_TRACKING_SCENARIO(Scenario) \
   static const ::dabench::TrackingScenarioRegistration<Scenario> dabench_tracking_scenario_registration_##Scenario {}

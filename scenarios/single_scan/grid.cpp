@@ -200,6 +200,6 @@ void GridScenario::generate(RandomStream& rng, ScenarioSample& sample, GridDetai
   }
 }
 
-DABENCH_REGISTER_SCENARIO(GridScenario);
+DABENCH_REGISTER_SINGLE_SCAN_SCENARIO(GridScenario);
 
 }  // namespace dabench

@@ -33,7 +33,7 @@ std::string solver_error(const std::string& text) {
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 std::string resolved(const std::string& algorithm, const std::vector<KeyValue>& settings, const std::string& key) {
-  const auto* entry = single_scan_registry().find(algorithm);
+  const auto* entry = single_scan_algorithm_registry().find(algorithm);
   REQUIRE(entry != nullptr);
   for (const KeyValue& kv : entry->resolve(settings)) {
     if (kv.key == key) return kv.value;

@@ -1,5 +1,5 @@
 // The contract every registered single-scan algorithm must keep (DESIGN.md, "A contract test
-// runs every registered algorithm on a tiny problem"). Iterates single_scan_registry(), so a
+// runs every registered algorithm on a tiny problem"). Iterates single_scan_algorithm_registry(), so a
 // new algorithm is covered the moment it registers itself. Each algorithm is built with its
 // defaults (entry.create({})) and, on a fixed set of small problems including degenerate ones,
 // either refuses (report.skipped non-empty) or returns:
@@ -105,7 +105,7 @@ bool bit_identical(const Outcome& a, const Outcome& b) {
 }  // namespace
 
 TEST_CASE("contract: the registry holds the baseline algorithms", "[contract]") {
-  const auto& entries = single_scan_registry().entries();
+  const auto& entries = single_scan_algorithm_registry().entries();
   CHECK(entries.count("bp") == 1);
   CHECK(entries.count("exact") == 1);
   for (const auto& [name, entry] : entries) {
@@ -116,7 +116,7 @@ TEST_CASE("contract: the registry holds the baseline algorithms", "[contract]") 
 
 TEST_CASE("contract: every algorithm returns valid marginals", "[contract]") {
   const std::vector<NamedProblem> problems = contract_problems();
-  for (const auto& [name, entry] : single_scan_registry().entries()) {
+  for (const auto& [name, entry] : single_scan_algorithm_registry().entries()) {
     auto solver = entry.create({});
     REQUIRE(solver != nullptr);
     MarginalTable table;
@@ -151,7 +151,7 @@ TEST_CASE("contract: every algorithm returns valid marginals", "[contract]") {
 
 TEST_CASE("contract: results depend only on the problem (bit-identical)", "[contract]") {
   const std::vector<NamedProblem> problems = contract_problems();
-  for (const auto& [name, entry] : single_scan_registry().entries()) {
+  for (const auto& [name, entry] : single_scan_algorithm_registry().entries()) {
     INFO("algorithm " << name);
     // Reference: one fresh solver and one fresh table per problem.
     std::vector<Outcome> fresh;

@@ -78,7 +78,7 @@ RowMatrix chain_marginals(const SingleScanProblem& problem) {
 }
 
 SingleScanProblem grid_problem(int rows, int cols, double spacing, std::uint32_t trial) {
-  const auto scenario = scenario_registry().find("grid")->create(
+  const auto scenario = single_scan_scenario_registry().find("grid")->create(
       {{"rows", std::to_string(rows)}, {"cols", std::to_string(cols)}, {"spacing", std::to_string(spacing)}});
   ScenarioSample sample;
   RandomStream rng(31337, 0, trial);

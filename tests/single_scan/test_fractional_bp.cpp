@@ -34,7 +34,7 @@ using namespace dabench::test;
 namespace {
 
 std::vector<SingleScanProblem> grid_problems(int rows, int cols, double spacing, int count) {
-  const auto scenario = scenario_registry().find("grid")->create(
+  const auto scenario = single_scan_scenario_registry().find("grid")->create(
       {{"rows", std::to_string(rows)}, {"cols", std::to_string(cols)}, {"spacing", std::to_string(spacing)}});
   std::vector<SingleScanProblem> problems;
   ScenarioSample sample;

@@ -60,7 +60,7 @@ TEST_CASE("grid: parameters bind in the documented order and defaults are valid"
   CHECK(options.validate().empty());
   CHECK(options.gate_threshold() == Approx(18.420680743952367).epsilon(1e-14));  // −2 ln 1e-4
 
-  const auto* entry = dabench::scenario_registry().find("grid");
+  const auto* entry = dabench::single_scan_scenario_registry().find("grid");
   REQUIRE(entry != nullptr);
   CHECK(entry->create({{"rows", "3"}, {"spacing", "0"}}) != nullptr);
 }

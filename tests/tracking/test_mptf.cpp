@@ -264,7 +264,7 @@ TEST_CASE("mptf: tracks end miss_limit scans after the last detection, 3 or 5 by
 }
 
 TEST_CASE("mptf: registry builds from a SPEC and rejects bad options", "[mptf]") {
-  const auto* entry = dabench::tracker_registry().find("mptf");
+  const auto* entry = dabench::tracking_tracker_registry().find("mptf");
   REQUIRE(entry != nullptr);
   CHECK_NOTHROW(dabench::make_tracker("mptf:pg=0.99,confirm_hits=2,confirm_scans=3,deletion_misses=4"));
   CHECK_THROWS_AS(dabench::make_tracker("mptf:pg=1"), dabench::InputError);

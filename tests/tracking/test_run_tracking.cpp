@@ -146,7 +146,7 @@ class FixedTrackTracker final : public dabench::Tracker {
  private:
   Options o_;
 };
-DABENCH_REGISTER_TRACKER(FixedTrackTracker);
+DABENCH_REGISTER_TRACKING_TRACKER(FixedTrackTracker);
 
 // mode 0: throws; 1: skips; 2: a track with 2 state rows; 3: a track past the last scan.
 struct BadTrackerOptions {
@@ -180,7 +180,7 @@ class BadTracker final : public dabench::Tracker {
  private:
   Options o_;
 };
-DABENCH_REGISTER_TRACKER(BadTracker);
+DABENCH_REGISTER_TRACKING_TRACKER(BadTracker);
 
 // One confirmed track through the first measurement [r, ṙ, ζ] of every scan (the previous
 // state for an empty scan), state [r, ṙ, ζ, 0]; iterations = measurements in the run,
@@ -219,7 +219,7 @@ class FirstMeasurementTracker final : public dabench::Tracker {
     report.free_energy = free_energy;
   }
 };
-DABENCH_REGISTER_TRACKER(FirstMeasurementTracker);
+DABENCH_REGISTER_TRACKING_TRACKER(FirstMeasurementTracker);
 
 // ---- helpers ------------------------------------------------------------------------------
 

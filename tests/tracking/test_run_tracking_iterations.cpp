@@ -128,7 +128,7 @@ class IteratingTracker final : public dabench::Tracker {
 
   Options o_;
 };
-DABENCH_REGISTER_TRACKER(IteratingTracker);
+DABENCH_REGISTER_TRACKING_TRACKER(IteratingTracker);
 
 const std::vector<std::string> kIterationMetrics = {"nvt",       "tpd",          "nft",
                                                     "false_tracks", "ghost_tracks", "broken_targets",

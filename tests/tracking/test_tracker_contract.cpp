@@ -1,5 +1,5 @@
 // The contract every registered tracker must keep (DESIGN.md, "a contract test runs every
-// registered algorithm on a tiny problem"), over tracker_registry(), so a new tracker is covered
+// registered algorithm on a tiny problem"), over tracking_tracker_registry(), so a new tracker is covered
 // when it registers itself. Each is built with its defaults and run on short OTHR runs,
 // including one without clutter and one with no detections at all; it either refuses
 // (report.skipped) or returns tracks that
@@ -66,7 +66,7 @@ bool same(const TrackSet& a, const TrackSet& b) {
 }  // namespace
 
 TEST_CASE("tracker contract: the registry holds jdt-vb and mptf", "[contract]") {
-  const auto& entries = tracker_registry().entries();
+  const auto& entries = tracking_tracker_registry().entries();
   CHECK(entries.count("jdt-vb") == 1);
   CHECK(entries.count("mptf") == 1);
   for (const auto& [name, entry] : entries) {
@@ -78,7 +78,7 @@ TEST_CASE("tracker contract: the registry holds jdt-vb and mptf", "[contract]") 
 TEST_CASE("tracker contract: every tracker returns valid tracks that depend only on the run", "[contract]") {
   const std::vector<TrackingScenarioSample> runs = {othr_run(0.75, 125.0, 8, 0), othr_run(1.0, 0.0, 6, 1),
                                                     othr_run(1e-9, 20.0, 5, 2), othr_run(0.4, 400.0, 6, 3)};
-  for (const auto& [name, entry] : tracker_registry().entries()) {
+  for (const auto& [name, entry] : tracking_tracker_registry().entries()) {
     if (name.rfind("test-", 0) == 0) continue;  // test-only trackers of other test files
     INFO("tracker " << name);
     auto reused = make_tracker(name);

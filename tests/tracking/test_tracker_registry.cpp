@@ -1,4 +1,4 @@
-// Tests of the tracker registry (harness/tracking/registry.hpp, DABENCH_REGISTER_TRACKER): a tracker
+// Tests of the tracker registry (harness/tracking/registry.hpp, DABENCH_REGISTER_TRACKING_TRACKER): a tracker
 // defined here registers with one line, SPECs set its options, bad SPECs are InputErrors.
 #include <catch2/catch.hpp>
 
@@ -43,12 +43,12 @@ class ConstantTracker final : public dabench::Tracker {
   Options options_;
 };
 
-DABENCH_REGISTER_TRACKER(ConstantTracker);
+DABENCH_REGISTER_TRACKING_TRACKER(ConstantTracker);
 
 }  // namespace
 
-TEST_CASE("tracker registry: registered tracker is built from a SPEC with its options", "[tracker_registry]") {
-  const auto* entry = dabench::tracker_registry().find("test-constant-tracker");
+TEST_CASE("tracker registry: registered tracker is built from a SPEC with its options", "[tracking_tracker_registry]") {
+  const auto* entry = dabench::tracking_tracker_registry().find("test-constant-tracker");
   REQUIRE(entry != nullptr);
   CHECK(entry->summary == "test only: one constant track per scan");
   auto tracker = dabench::make_tracker("test-constant-tracker:value=-2.25");
@@ -64,7 +64,7 @@ TEST_CASE("tracker registry: registered tracker is built from a SPEC with its op
   CHECK(report.skipped.empty());
 }
 
-TEST_CASE("tracker registry: unknown names and keys and invalid values are input errors", "[tracker_registry]") {
+TEST_CASE("tracker registry: unknown names and keys and invalid values are input errors", "[tracking_tracker_registry]") {
   CHECK_THROWS_AS(dabench::make_tracker("no-such-tracker"), dabench::InputError);
   CHECK_THROWS_WITH(dabench::make_tracker("no-such-tracker"), Catch::Contains("unknown tracker 'no-such-tracker'"));
   CHECK_THROWS_AS(dabench::make_tracker("test-constant-tracker:nokey=1"), dabench::InputError);
