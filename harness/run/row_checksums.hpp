@@ -44,15 +44,14 @@ class RecordedChecksums {
 };
 
 struct VerifiedRows {
-  long long rows = 0;          // the rows whose checksums match, from the first on
-  long long complete_rows = 0; // rows ending in a newline
+  long long rows = 0;  // the rows whose checksums match, from the first on
 };
 
 // Reads `path`'s rows after its first `header_bytes` bytes and compares each with the next
 // recorded checksum, calling on_row(index, row, byte offset of the row) for each matching row.
 // InputError naming the file and line of the first row that differs, or of the first missing
 // row when the file holds fewer complete rows than are recorded. Rows after the recorded ones
-// are left unverified (`rows` < `complete_rows`).
+// are left unverified (not counted in `rows`).
 VerifiedRows verify_rows(const std::string& path, std::size_t header_bytes, RecordedChecksums& recorded,
                          const std::function<void(long long, std::string_view, std::uintmax_t)>& on_row);
 
