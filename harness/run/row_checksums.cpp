@@ -107,31 +107,44 @@ VerifiedRows verify_rows(const std::string& path, std::size_t header_bytes, Reco
   }
 }
 
+void ChecksumLineWriter::add(std::string_view row) {
+  line_ += count_ == 0 ? name_ + "," : std::string(" ");
+  append_checksum(line_, row);
+  if (++count_ == kPerLine) flush();
+}
+
+int ChecksumLineWriter::flush() {
+  if (count_ > 0 && reason_ == 0) {
+    line_ += '\n';
+    if (std::fwrite(line_.data(), 1, line_.size(), out_) != line_.size()) reason_ = errno != 0 ? errno : EIO;
+  }
+  line_.clear();
+  count_ = 0;
+  return reason_;
+}
+
 void rewrite_checksums(const std::string& folder, const std::vector<std::string>& names,
                        const std::vector<std::size_t>& header_bytes, const std::vector<long long>& rows) {
   const std::filesystem::path target = std::filesystem::path(folder) / kChecksumsFile;
   const std::string temporary = fmt::format("{}.tmp.{}", target.string(), getpid());
   std::FILE* out = std::fopen(temporary.c_str(), "wb");
   if (out == nullptr) throw WriteError(fmt::format("{}: cannot write ({})", target.string(), std::strerror(errno)));
-  bool written = std::fputs(kChecksumsHeader, out) >= 0;
-  constexpr long long kPerLine = 512;
-  std::string text;
-  for (std::size_t k = 0; k < names.size() && written; ++k) {
+  int reason = std::fputs(kChecksumsHeader, out) >= 0 ? 0 : (errno != 0 ? errno : EIO);
+  for (std::size_t k = 0; k < names.size() && reason == 0; ++k) {
     std::ifstream in((std::filesystem::path(folder) / names[k]).string(), std::ios::binary);
     in.seekg(static_cast<std::streamoff>(header_bytes[k]));
+    ChecksumLineWriter lines(out, names[k]);
     std::string row;
-    for (long long r = 0; r < rows[k] && written; ++r) {
-      if (!std::getline(in, row)) throw InputError(fmt::format("{}: changed while being read", names[k]));
-      text += r % kPerLine == 0 ? names[k] + "," : std::string(" ");
-      append_checksum(text, row);
-      if (r % kPerLine == kPerLine - 1 || r + 1 == rows[k]) {
-        text += '\n';
-        written = std::fwrite(text.data(), 1, text.size(), out) == text.size();
-        text.clear();
+    for (long long r = 0; r < rows[k]; ++r) {
+      if (!std::getline(in, row)) {
+        std::fclose(out);
+        std::filesystem::remove(temporary);
+        throw InputError(fmt::format("{}: changed while being read", names[k]));
       }
+      lines.add(row);
     }
+    reason = lines.flush();
   }
-  int reason = written ? 0 : errno;
   if (std::fclose(out) != 0 && reason == 0) reason = errno != 0 ? errno : EIO;
   std::error_code error;
   std::string message = reason != 0 ? fmt::format("write failed ({})", std::strerror(reason)) : "";

@@ -55,6 +55,22 @@ struct VerifiedRows {
 VerifiedRows verify_rows(const std::string& path, std::size_t header_bytes, RecordedChecksums& recorded,
                          const std::function<void(long long, std::string_view, std::uintmax_t)>& on_row);
 
+// Appends one file's row checksums to an open checksums.csv, 512 to a line (merge, and
+// rewrite_checksums). flush() ends the last line and returns the errno of the first failed
+// write, 0 if none.
+class ChecksumLineWriter {
+ public:
+  ChecksumLineWriter(std::FILE* out, std::string name) : out_(out), name_(std::move(name)) {}
+  void add(std::string_view row);
+  int flush();
+
+ private:
+  static constexpr int kPerLine = 512;
+  std::FILE* out_;
+  std::string name_, line_;
+  int count_ = 0, reason_ = 0;
+};
+
 // Writes `folder`/checksums.csv afresh (whole or not at all) for the first rows[k] rows of each
 // file names[k] there (their checksums computed from the files).
 void rewrite_checksums(const std::string& folder, const std::vector<std::string>& names,

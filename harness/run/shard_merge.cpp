@@ -141,33 +141,6 @@ class ShardRows {
   long long item_ = -1, line_ = 1;
 };
 
-// Appends the checksums of a merged file's rows to the merged checksums.csv, 512 per line.
-class ChecksumWriter {
- public:
-  ChecksumWriter(std::FILE* out, std::string name) : out_(out), name_(std::move(name)) {}
-  void add(std::string_view row) {
-    line_ += count_ == 0 ? name_ + "," : std::string(" ");
-    line_ += fmt::format("{:08x}", row_checksum(row));
-    if (++count_ == kPerLine) flush();
-  }
-  // The errno of the first failed write, 0 if none.
-  int flush() {
-    if (count_ > 0 && reason_ == 0) {
-      line_ += '\n';
-      if (std::fwrite(line_.data(), 1, line_.size(), out_) != line_.size()) reason_ = errno != 0 ? errno : EIO;
-    }
-    line_.clear();
-    count_ = 0;
-    return reason_;
-  }
-
- private:
-  static constexpr int kPerLine = 512;
-  std::FILE* out_;
-  std::string name_, line_;
-  int count_ = 0, reason_ = 0;
-};
-
 // Writes `name` of the merged run to `target` (and its rows' checksums to `checksums`): block b
 // of the plan's items comes from shard b mod N, whose rows must be exactly its blocks' items in
 // order (`rows_per_item` rows each when not 0). A failed write is a WriteError naming the file
@@ -180,7 +153,7 @@ void merge_file(const RunPlan& plan, const std::vector<ShardMeta>& shards, const
   for (const ShardMeta& shard : shards) readers.emplace_back(plan, fs::path(shard.path) / name, header);
   std::FILE* out = std::fopen(target.c_str(), "wb");
   if (out == nullptr) throw WriteError(fmt::format("{}: cannot open for writing ({})", target.string(), std::strerror(errno)));
-  ChecksumWriter checksum_lines(checksums, name);
+  ChecksumLineWriter checksum_lines(checksums, name);
   int reason = 0;  // errno of the first failed write; nothing more is written after it
   const auto put = [&](const char* text) {
     if (reason == 0 && std::fputs(text, out) < 0) reason = errno != 0 ? errno : EIO;
