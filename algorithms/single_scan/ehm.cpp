@@ -28,16 +28,49 @@ void Ehm::solve(const SingleScanProblem& problem, MarginalTable& marginals, Solv
   must_detect_.resize(n);
   for (int i = 0; i < n; ++i) must_detect_[i] = problem.must_detect(i);
   marginals.reshape_zero(n, m);
-  local_id_.assign(m, -1);  // clusters use disjoint measurements: one reset per solve suffices
+  local_id_.assign(m, -1);  // set per cluster (prepare_cluster); clusters' measurements are disjoint
   nodes_total_ = 0;
   stats_.clusters = graph_.clusters();
+  // The work limit (header): every net is bounded before any is built. With one cluster of
+  // several targets its bound is taken where it is solved; with more, a first pass bounds them
+  // all (keeping their orders), so a solve past the cap spends nothing on nets, unless a coarse
+  // bound on the whole problem already keeps within the caps.
+  int multi = 0;
   for (int c = 0; c < graph_.clusters(); ++c) {
-    const char* reason = solve_cluster(graph_.cluster_start(c), graph_.cluster_start(c + 1), marginals);
-    if (reason[0] != '\0') {
-      report.skipped = reason;
-      stats_.nodes = nodes_total_;
-      return;
+    if (graph_.cluster_start(c + 1) - graph_.cluster_start(c) == 1) {
+      ++stats_.node_bound;
+    } else {
+      ++multi;
     }
+  }
+  const bool bound_first = multi >= 2 && !surely_within_caps();
+  auto refuse = [&](const char* reason) {
+    report.skipped = reason;
+    stats_.nodes = nodes_total_;
+  };
+  if (bound_first) {
+    saved_order_.resize(n);
+    const char* verdict = "";
+    for (int c = 0; c < graph_.clusters(); ++c) {
+      const int first = graph_.cluster_start(c), last = graph_.cluster_start(c + 1);
+      if (last - first == 1) continue;
+      const char* reason = prepare_cluster(first, last, false);
+      if (reason[0] != '\0') return refuse(reason);
+      if (add_to_bound()[0] != '\0') verdict = "work_estimate";  // go on: stats() get the whole bound
+      std::copy(order_.begin(), order_.end(), saved_order_.begin() + first);
+    }
+    if (verdict[0] != '\0') return refuse(verdict);
+  }
+  for (int c = 0; c < graph_.clusters(); ++c) {
+    const int first = graph_.cluster_start(c), last = graph_.cluster_start(c + 1);
+    if (last - first == 1) {
+      solve_single(graph_.cluster_targets()[first], marginals);
+      continue;
+    }
+    const char* reason = prepare_cluster(first, last, bound_first);
+    if (reason[0] == '\0' && !bound_first) reason = add_to_bound();
+    if (reason[0] == '\0') reason = solve_cluster(marginals);
+    if (reason[0] != '\0') return refuse(reason);
   }
   stats_.nodes = nodes_total_;
 }
@@ -63,17 +96,20 @@ void Ehm::solve_single(int target, MarginalTable& marginals) {
   stats_.largest_cluster = std::max(stats_.largest_cluster, 1);
 }
 
-const char* Ehm::solve_cluster(int first, int last, MarginalTable& marginals) {
+// The current cluster's gate tables, order (chosen, or the one saved by the bounding pass), tree
+// and net tables. Returns "" or "key_width".
+const char* Ehm::prepare_cluster(int first, int last, bool saved_order) {
   const int size = last - first;
-  if (size == 1) {
-    solve_single(graph_.cluster_targets()[first], marginals);
-    return "";
-  }
   cluster_size_ = size;
   stats_.largest_cluster = std::max(stats_.largest_cluster, size);
   targets_.assign(graph_.cluster_targets().begin() + first, graph_.cluster_targets().begin() + last);
 
   // Shared measurements (gated by >= 2 targets) get local ids; exclusive ones fold into choice 0.
+  // (The bounding pass may have numbered this cluster before: the same ids are given again.)
+  for (int li = 0; li < size; ++li) {
+    const int t = targets_[li];
+    for (int e = graph_.row_begin(t); e < graph_.row_end(t); ++e) local_id_[graph_.edge_measurement(e)] = -1;
+  }
   shared_ = 0;
   gate_begin_.resize(size + 1);
   gate_meas_.clear();
@@ -116,21 +152,34 @@ const char* Ehm::solve_cluster(int first, int last, MarginalTable& marginals) {
     for (int g = gate_begin_[li]; g < gate_begin_[li + 1]; ++g) meas_targets_[count_[gate_meas_[g]]++] = li;
   }
 
-  choose_order();
-  stats_.estimated_nodes += cluster_estimate_;
-  // The estimate bounds the plain-EHM net from above and is within a factor 0.6-1 of the
-  // nodes built on the grids that finish; refuse up front only far past the cap.
-  if (cluster_estimate_ > kEstimateMargin * static_cast<double>(options_.max_nodes)) return "work_estimate";
+  if (saved_order) {
+    order_.assign(saved_order_.begin() + first, saved_order_.begin() + last);
+  } else {
+    choose_order();
+  }
   position_.resize(size);
   for (int p = 0; p < size; ++p) position_[order_[p]] = p;
   build_tree();
-  const int bits = build_tables();
-  stats_.max_key_bits = std::max(stats_.max_key_bits, bits);
-  if (bits <= 64) return run_net<1>(marginals);
-  if (bits <= 128) return run_net<2>(marginals);
-  if (bits <= 256) return run_net<4>(marginals);
-  if (bits <= 64 * kMaxKeyWords) return run_net<kMaxKeyWords>(marginals);
-  return "key_width";
+  cluster_bits_ = build_tables();
+  stats_.max_key_bits = std::max(stats_.max_key_bits, cluster_bits_);
+  return cluster_bits_ <= 64 * kMaxKeyWords ? "" : "key_width";
+}
+
+// Adds the current cluster's bound to the solve's; "work_estimate" when the solve's nodes could
+// pass max_nodes or this net's stored edges 16 × max_nodes.
+const char* Ehm::add_to_bound() {
+  const NetBound bound = net_bound();
+  stats_.node_bound += bound.nodes;
+  stats_.edge_bound += bound.edges;
+  const auto cap = static_cast<double>(options_.max_nodes);
+  return stats_.node_bound > cap || bound.edges > kEdgesPerNode * cap ? "work_estimate" : "";
+}
+
+const char* Ehm::solve_cluster(MarginalTable& marginals) {
+  if (cluster_bits_ <= 64) return run_net<1>(marginals);
+  if (cluster_bits_ <= 128) return run_net<2>(marginals);
+  if (cluster_bits_ <= 256) return run_net<4>(marginals);
+  return run_net<kMaxKeyWords>(marginals);
 }
 
 // Tree of tracks over positions (parent position < child position).

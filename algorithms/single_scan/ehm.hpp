@@ -52,16 +52,22 @@
 //  - A target that must be detected (a zero missed-detection weight, Pd = 1) has a miss of weight
 //    0: its choice 0 holds its exclusive measurements only. A problem where no event gives every
 //    such target a measurement is skipped:infeasible (must_detect_feasible), before any net.
-//  - Work limit: the total number of net nodes in one solve is capped by `max_nodes`; past it
-//    the solve reports skipped:work_limit (so do more than 16 stored edges per allowed node).
-//    Before building, the chosen order's estimated net size (order_cost: an upper bound on the
-//    plain-EHM net, 0.6-1× the nodes actually built on the grids that finish) is compared with
-//    the cap: above 4 × max_nodes the cluster is refused at once as skipped:work_estimate,
-//    instead of spending seconds filling the budget.
+//  - Work limit: `max_nodes` caps the net nodes of one solve, and one net's stored edges may be
+//    at most 16 × max_nodes. Both are enforced before anything is built, by an upper bound on
+//    every layer from the tree and the key spaces (net_bound, ehm_bound.cpp: the least of 2^|K|,
+//    the subsets of K no larger than the number of ancestors gating K, the product over those
+//    ancestors of 1 + their measurements in K, and the parent's layer times its choices). A
+//    solve whose bound passes a cap is refused at once as skipped:work_estimate; a solve within
+//    it cannot pass the cap, so none spends its budget and then gives up. With several clusters
+//    of two or more targets, all are bounded before the first is built. The bound is exact on
+//    complete (dense) problems and 1.00-1.28× the nodes built (median 1.03) on the 84 of
+//    bp-marginal-association experiment 3's 120 problems at 5×5…10×10 (trials 0-19) that fit
+//    the default cap: a refused net may still fit, so raise max_nodes to try.
 //    A key space wider than 512 bits reports skipped:key_width. Memory is about 16 bytes plus
 //    8 per key word per node, plus 4 bytes per (node, choice, child) edge: roughly 60 bytes a
-//    node on the grids, so up to about 3 GB per solver at the default cap of 5e7 nodes (lower
-//    it when many threads solve large problems at once).
+//    node on the grids (about 10 edges a node), 130 on complete problems (25), so at most about
+//    4.4 GB per solver at the default cap of 5e7 nodes (lower it when many threads solve large
+//    problems at once).
 //  - Layers whose key space has at most 22 bits are indexed by a direct-address table
 //    (key → node id, 16 MB, reset entry by entry after each layer); wider ones by an
 //    open-addressing hash table with generation-stamped slots. Node keys, weights and edges live
@@ -90,13 +96,13 @@ namespace dabench {
 
 struct EhmOptions {
   double threshold = 0.0;              // weights ψ_i(j) below this are set to zero first
-  std::int64_t max_nodes = 50000000;   // work limit: net nodes per solve (skipped:work_limit above; ~3 GB)
+  std::int64_t max_nodes = 50000000;   // work limit: net nodes per solve (bounded above it: skipped:work_estimate)
   int order = 0;                       // target order: 0 auto, 1 greedy min-frontier, 2 Cuthill–McKee BFS, 3 input
   bool tree = true;                    // true: EHM2 tree of tracks; false: EHM net over the order (a path)
 
   void bind(ParamList& params) {
     params.add("threshold", threshold, "weights below this are treated as zero");
-    params.add("max_nodes", max_nodes, "work limit in net nodes per solve (skipped:work_limit above)");
+    params.add("max_nodes", max_nodes, "work limit in net nodes per solve (skipped:work_estimate when its bound is above)");
     params.add("order", order, "target order: 0 auto (cheapest of 1-3), 1 greedy min-frontier, 2 Cuthill-McKee BFS, 3 input");
     params.add("tree", tree, "1: EHM2 tree of tracks; 0: plain EHM net over the order");
   }
@@ -111,7 +117,8 @@ struct EhmStats {
   int max_key_bits = 0;       // largest key space |K(t)|
   int largest_cluster = 0;    // targets in the largest cluster
   int clusters = 0;
-  double estimated_nodes = 0.0; // estimated net size of the chosen orders (order_cost)
+  double node_bound = 0.0;     // bounds on the nodes and edges (net_bound), summed over the
+  double edge_bound = 0.0;     //   clusters bounded (all of them, unless one was refused first)
   double log_partition = 0.0; // log Z of the normalised problem (ψ_i(0) = 1 form)
 };
 
@@ -133,27 +140,37 @@ class Ehm final : public SingleScanSolver {
     std::int32_t node;
   };
 
-  // Returns "" on success, else the skip reason.
-  const char* solve_cluster(int first, int last, MarginalTable& marginals);
+  // A cluster of several targets: prepare_cluster (gate tables, order, tree, net tables), then
+  // add_to_bound, then solve_cluster. Each returns "" or the reason the solve is refused.
+  const char* prepare_cluster(int first, int last, bool saved_order);
+  const char* add_to_bound();
+  const char* solve_cluster(MarginalTable& marginals);
   void solve_single(int target, MarginalTable& marginals);
   // The target order and its estimated net (ehm_order.cpp).
   void choose_order();
   void order_greedy(const std::vector<int>& prefix);  // `prefix` first, then the greedy rule
   void order_bfs();
-  double order_cost(const std::vector<int>& order, int& widest);
+  double order_cost(const std::vector<int>& order);
   // The tree of tracks over the order and the net's per-position tables (ehm.cpp).
   void build_tree();
   int build_tables();  // returns the largest key space
+  // Upper bounds on the current cluster's net from its tree and key spaces (ehm_bound.cpp).
+  struct NetBound {
+    double nodes = 0.0;
+    double edges = 0.0;
+  };
+  NetBound net_bound();
+  bool surely_within_caps() const;  // a coarse bound on every net of the problem is within the caps
   // The net of the current cluster (ehm_net.cpp): run_net = build_net, backward_pass, forward_pass.
-  // Returns "" or the reason the cluster is refused ("work_limit", "numerical").
+  // Returns "" or "numerical".
   template <int W>
   [[nodiscard]] const char* run_net(MarginalTable& marginals);
   template <int W>
-  [[nodiscard]] bool build_net();
+  void build_net();
   template <int W>
-  [[nodiscard]] bool build_child_direct(int p, int ci);
+  void build_child_direct(int p, int ci);
   template <int W>
-  [[nodiscard]] bool build_child_hashed(int p, int ci);
+  void build_child_hashed(int p, int ci);
   template <int W>
   double backward_pass();
   template <int W>
@@ -167,12 +184,11 @@ class Ehm final : public SingleScanSolver {
   template <int W>
   void grow_table(std::int32_t layer_first);
 
-  static constexpr double kEstimateMargin = 4.0;  // refuse when the estimate exceeds this × max_nodes
+  static constexpr double kEdgesPerNode = 16.0;   // a net may store at most this × max_nodes edges
   static constexpr int kMaxKeyWords = 8;          // key spaces up to 512 shared measurements
 
   Options options_;
   EhmStats stats_;
-  double cluster_estimate_ = 0.0;   // order_cost of the current cluster's chosen order
   AssociationGraph graph_;
 
   // Cluster, indexed by local target li (cluster order) and local shared measurement id.
@@ -193,6 +209,8 @@ class Ehm final : public SingleScanSolver {
 
   // Order and tree, indexed by position p (0 = root).
   std::vector<int> order_;            // p → li
+  std::vector<int> saved_order_;      // the bounding pass's orders, at each cluster's target range
+  int cluster_bits_ = 0;              // the current cluster's widest key space
   std::vector<int> best_order_, prefix_targets_;
   int bfs_start_ = 0;
   std::vector<int> position_;         // li → p
@@ -211,6 +229,7 @@ class Ehm final : public SingleScanSolver {
   std::vector<int> set_bit_;
   std::vector<int> remap_begin_;      // p → [child slot][bit of K(p)] bit in K(child), or -1
   std::vector<int> remap_bit_;
+  std::vector<double> layer_bound_;   // p → upper bound on its layer's nodes (net_bound)
 
   // Net storage.
   std::vector<std::int64_t> layer_begin_;  // p → first node id (size positions + 1)
@@ -230,7 +249,7 @@ class Ehm final : public SingleScanSolver {
   std::int64_t nodes_total_ = 0;
 
   // Scratch.
-  std::vector<int> mark_, mark2_, count_, queue_, degree_, uf_;
+  std::vector<int> mark_, mark2_, count_, queue_, degree_, private_, uf_;
   std::vector<char> touched_, done_;
 };
 

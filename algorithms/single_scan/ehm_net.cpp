@@ -56,7 +56,7 @@ std::int32_t Ehm::find_or_insert(const std::uint64_t* key) {
   while (true) {
     Slot& slot = slots_[h];
     if (slot.stamp != generation_) {
-      if (++nodes_total_ > options_.max_nodes) return -1;
+      ++nodes_total_;
       const auto id = static_cast<std::int32_t>(keys_.size() / W);
       slot = {generation_, id};
       keys_.insert(keys_.end(), key, key + W);
@@ -90,7 +90,7 @@ void Ehm::grow_table(std::int32_t layer_first) {
 
 template <int W>
 const char* Ehm::run_net(MarginalTable& marginals) {
-  if (!build_net<W>()) return "work_limit";
+  build_net<W>();
   std::feclearexcept(FE_UNDERFLOW);  // write_row applies the underflow bound only once it is raised
   // Every layer's factor enters Z exactly once (β_root = Π of the factors below it) when the
   // cluster's tree has one root, which a connected cluster always has.
@@ -102,18 +102,17 @@ const char* Ehm::run_net(MarginalTable& marginals) {
 // The layers and their links, top-down: a root layer holds one node (nothing used yet); the layer
 // of child c of p holds the keys (S ∪ {j}) ∩ K(c) over p's nodes S and p's choices j allowed by S.
 // edges_ holds, per node of p, per choice, per child slot, the child node it leads to (-1: j ∈ S).
-// Returns false past the work limit.
+// Its size is within the bound checked before (net_bound), so nothing here counts against a limit.
 template <int W>
-bool Ehm::build_net() {
+void Ehm::build_net() {
   const int size = cluster_size_;
   keys_.clear();
   edges_.clear();
   layer_begin_.assign(2 * size, 0);  // [2p] = first node, [2p+1] = node count
   edge_begin_.assign(size, 0);
-  const std::int64_t edge_limit = 16 * options_.max_nodes;
   for (int p = 0; p < size; ++p) {
     if (parent_[p] < 0) {
-      if (++nodes_total_ > options_.max_nodes) return false;
+      ++nodes_total_;
       layer_begin_[2 * p] = static_cast<std::int64_t>(keys_.size() / W);
       layer_begin_[2 * p + 1] = 1;
       keys_.insert(keys_.end(), W, std::uint64_t{0});
@@ -125,22 +124,23 @@ bool Ehm::build_net() {
     edge_begin_[p] = static_cast<std::int64_t>(edges_.size());
     if (children == 0) continue;
     const std::int64_t edge_count = nodes * choices * children;
-    if (static_cast<std::int64_t>(edges_.size()) + edge_count > edge_limit) return false;
     edges_.resize(edges_.size() + static_cast<std::size_t>(edge_count));
     for (int ci = 0; ci < children; ++ci) {
       const int c = child_list_[child_begin_[p] + ci];
-      const bool built = key_size_[c] <= kDirectBits ? build_child_direct<W>(p, ci) : build_child_hashed<W>(p, ci);
-      if (!built) return false;
+      if (key_size_[c] <= kDirectBits) {
+        build_child_direct<W>(p, ci);
+      } else {
+        build_child_hashed<W>(p, ci);
+      }
     }
   }
   stats_.edges += static_cast<std::int64_t>(edges_.size());
-  return true;
 }
 
 // The layer of child slot ci of p when K(child) has at most kDirectBits bits: a direct-address
 // index (key → node), no hashing or key compares; keys fit in word 0.
 template <int W>
-bool Ehm::build_child_direct(int p, int ci) {
+void Ehm::build_child_direct(int p, int ci) {
   const std::int64_t first = layer_begin_[2 * p], nodes = layer_begin_[2 * p + 1];
   const int cb = choice_begin_[p], choices = choice_begin_[p + 1] - cb;
   const int children = child_begin_[p + 1] - child_begin_[p];
@@ -174,10 +174,7 @@ bool Ehm::build_child_direct(int p, int ci) {
       const std::uint64_t k0 = sets[ch] >= 0 ? base0 | (std::uint64_t{1} << sets[ch]) : base0;
       std::int32_t id = direct_[k0];
       if (id < 0) {
-        if (++nodes_total_ > options_.max_nodes) {
-          for (auto id2 = static_cast<std::size_t>(child_first); id2 < keys_.size() / W; ++id2) direct_[keys_[id2 * W]] = -1;
-          return false;
-        }
+        ++nodes_total_;
         id = static_cast<std::int32_t>(keys_.size() / W);
         direct_[k0] = id;
         keys_.push_back(k0);
@@ -189,13 +186,12 @@ bool Ehm::build_child_direct(int p, int ci) {
   for (auto id = static_cast<std::size_t>(child_first); id < keys_.size() / W; ++id) direct_[keys_[id * W]] = -1;
   layer_begin_[2 * c] = child_first;
   layer_begin_[2 * c + 1] = static_cast<std::int64_t>(keys_.size() / W) - child_first;
-  return true;
 }
 
 // The layer of child slot ci of p for wider key spaces: the hash table, a fresh generation,
 // sized for about twice the parent's layer and grown as the layer fills.
 template <int W>
-bool Ehm::build_child_hashed(int p, int ci) {
+void Ehm::build_child_hashed(int p, int ci) {
   const std::int64_t first = layer_begin_[2 * p], nodes = layer_begin_[2 * p + 1];
   const int cb = choice_begin_[p], choices = choice_begin_[p + 1] - cb;
   const int children = child_begin_[p + 1] - child_begin_[p];
@@ -231,16 +227,13 @@ bool Ehm::build_child_hashed(int p, int ci) {
       }
       std::copy_n(base, W, key);
       if (sets[ch] >= 0) set_key_bit(key, sets[ch]);
-      const std::int32_t id = find_or_insert<W>(key);
-      if (id < 0) return false;
-      *out = id;
+      *out = find_or_insert<W>(key);
       const auto layer_nodes = static_cast<std::uint64_t>(keys_.size() / W) - static_cast<std::uint64_t>(child_first);
       if (layer_nodes * 2 > mask_ + 1) grow_table<W>(child_first);
     }
   }
   layer_begin_[2 * c] = child_first;
   layer_begin_[2 * c + 1] = static_cast<std::int64_t>(keys_.size() / W) - child_first;
-  return true;
 }
 
 // The weight of a choice is at most this: a gated ψ over the row scale is ≤ 1, the folded

@@ -13,8 +13,8 @@ namespace dabench {
 // holds at most 2^|F_k| used-sets, and at most Π_i (1 + f_i) over the processed targets i, f_i
 // = how many frontier measurements i gates (each target uses at most one). The estimate is
 // Σ_k min of the two (the product term is skipped on clusters above 400 targets, where its
-// O(K²·gate) cost would matter). Returns it, and the widest frontier in `widest`.
-double Ehm::order_cost(const std::vector<int>& order, int& widest) {
+// O(K²·gate) cost would matter). It ranks the candidate orders; the work limit uses net_bound.
+double Ehm::order_cost(const std::vector<int>& order) {
   const int size = cluster_size_;
   count_.resize(shared_);
   for (int j = 0; j < shared_; ++j) count_[j] = meas_begin_[j + 1] - meas_begin_[j];
@@ -22,7 +22,6 @@ double Ehm::order_cost(const std::vector<int>& order, int& widest) {
   const bool product = size <= 400;
   int frontier = 0;
   double cost = 0.0;
-  widest = 0;
   for (int k = 0; k < size; ++k) {
     const int li = order[k];
     for (int g = gate_begin_[li]; g < gate_begin_[li + 1]; ++g) {
@@ -32,7 +31,6 @@ double Ehm::order_cost(const std::vector<int>& order, int& widest) {
       touched_[j] = 1;
       frontier += static_cast<int>(count_[j] > 0);
     }
-    widest = std::max(widest, frontier);
     double log_width = std::min(frontier, 1000) * std::log(2.0);
     if (product) {
       double log_product = 0.0;
@@ -57,7 +55,6 @@ void Ehm::choose_order() {
     order_.resize(size);
     for (int li = 0; li < size; ++li) order_[li] = li;
   };
-  int widest = 0;
   if (options_.order != 0) {
     if (options_.order == 1) {
       prefix_targets_.clear();
@@ -67,14 +64,13 @@ void Ehm::choose_order() {
     } else {
       input();
     }
-    cluster_estimate_ = order_cost(order_, widest);
     return;
   }
   order_bfs();
   best_order_ = order_;
-  double best = order_cost(order_, widest);
+  double best = order_cost(order_);
   auto consider = [&] {
-    const double cost = order_cost(order_, widest);
+    const double cost = order_cost(order_);
     if (cost < best) {
       best = cost;
       best_order_.swap(order_);
@@ -107,9 +103,7 @@ void Ehm::choose_order() {
     consider();
   }
   input();
-  cluster_estimate_ = order_cost(order_, widest);
-  if (cluster_estimate_ < best) return;
-  cluster_estimate_ = best;
+  if (order_cost(order_) < best) return;
   order_.swap(best_order_);
 }
 

@@ -59,7 +59,7 @@ PoolSummary time_pool(SingleScanSolver& solver, const std::vector<SingleScanProb
 // `repeats` solves per instance. Large problems (repeats == 0): each benchmark iteration is one
 // pass over the pool, one solve per instance, and the counters come from that pass.
 // Counters: median_us / max_us over solved instances, skipped = instances refused by the work
-// limit, max_width, mean_nodes (per instance, refused ones counted up to the limit), max_bits.
+// limit, max_width, mean_nodes (per instance; a refused one builds none), max_bits.
 void solve_grid_ehm(benchmark::State& state, const char* spec, int rows, int cols, double spacing, int pool_size,
                     int repeats) {
   const auto pool = grid_pool({{"rows", std::to_string(rows)}, {"cols", std::to_string(cols)},

@@ -129,6 +129,10 @@ TEST_CASE("ehm: matches brute force and exact on random problems up to 8x8", "[e
       REQUIRE(result.report.skipped.empty());
       CHECK(scaled_error(result.marginals, reference.marginals, kRelative, kAbsolute) <= 1.0);
       ++exact_checked;
+      // The work limit's bounds (net_bound) hold: the net built is never larger.
+      const EhmStats& stats = dynamic_cast<Ehm&>(*solvers[v]).stats();
+      CHECK(static_cast<double>(stats.nodes) <= stats.node_bound);
+      CHECK(static_cast<double>(stats.edges) <= stats.edge_bound);
       if (small) {
         CHECK(scaled_error(result.marginals, brute.marginals, kRelative, kAbsolute) <= 1.0);
         ++brute_checked;
@@ -422,27 +426,121 @@ TEST_CASE("ehm: work limit refuses instead of hanging", "[ehm]") {
   const SingleScanProblem big = make_problem(RowMatrix::Constant(30, 30, 1.0));  // 2^29-wide layers
   auto solver = make_single_scan_solver("ehm:max_nodes=1000");
   const SolveResult result = run_solver(*solver, big);
-  // Its estimated net (about 2^29 nodes per layer) is far past 4 × the cap: refused before building.
+  // Its net's bound (about 2^29 nodes per layer) is past the cap: refused before building.
   CHECK(result.report.skipped == "work_estimate");
   CHECK(dynamic_cast<Ehm*>(solver.get())->stats().nodes == 0);
+  CHECK(dynamic_cast<Ehm*>(solver.get())->stats().node_bound > 1e8);
   // The same solver then solves a small problem normally (no stale state).
   const SolveResult after = run_solver(*solver, make_problem(RowMatrix::Constant(3, 3, 1.0)));
   REQUIRE(after.report.skipped.empty());
   CHECK(after.marginals(0, 0) == Approx(13.0 / 34.0).epsilon(1e-14));
   // The limit counts net nodes. The complete 3×3 net: the root (nothing used), then the keys
   // ∅, {1}, {2}, {3} (measurement used by target 1), then every set of at most two used
-  // measurements (1 + 3 + 3): 12 nodes.
+  // measurements (1 + 3 + 3): 12 nodes; edges stored 1·4 + 4·4 (node × choice, one child).
+  // The bound is exact here: Σ_{s ≤ ancestors} C(3, s) per layer.
   auto* ehm = dynamic_cast<Ehm*>(solver.get());
   const std::int64_t nodes = ehm->stats().nodes;
   CHECK(nodes == 12);
   CHECK(ehm->stats().max_layer_width == 7);
-  // The size estimate behind the up-front refusal bounds the net from above, and tightly.
-  CHECK(ehm->stats().estimated_nodes >= static_cast<double>(nodes));
-  CHECK(ehm->stats().estimated_nodes <= 4.0 * static_cast<double>(nodes));
+  CHECK(ehm->stats().node_bound == 12.0);
+  CHECK(ehm->stats().edges == 20);
+  CHECK(ehm->stats().edge_bound == 20.0);
   CHECK(run_solver(*make_single_scan_solver("ehm:max_nodes=" + std::to_string(nodes)),
                    make_problem(RowMatrix::Constant(3, 3, 1.0))).report.skipped.empty());
-  CHECK(run_solver(*make_single_scan_solver("ehm:max_nodes=" + std::to_string(nodes - 1)),
-                   make_problem(RowMatrix::Constant(3, 3, 1.0))).report.skipped == "work_limit");
+  auto tight = make_single_scan_solver("ehm:max_nodes=" + std::to_string(nodes - 1));
+  CHECK(run_solver(*tight, make_problem(RowMatrix::Constant(3, 3, 1.0))).report.skipped == "work_estimate");
+  CHECK(dynamic_cast<Ehm&>(*tight).stats().nodes == 0);
+}
+
+TEST_CASE("ehm: dense problems are bounded exactly and refused before building", "[ehm]") {
+  RandomStream rng(47, 8, 0);
+  auto dense = [&](int n, int m) {
+    RowMatrix psi(n, m);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < m; ++j) psi(i, j) = 0.1 + 1.9 * rng.uniform();
+    }
+    return make_problem(psi);
+  };
+  // Every target gates every measurement: the layer after k targets holds every set of at most k
+  // of the m measurements, which is the binomial bound, so the bound is the net's size:
+  // Σ_{k<n} Σ_{s≤k} C(m, s).
+  auto dense_net = [](int n, int m) {
+    double total = 0.0;
+    for (int k = 0; k < n; ++k) {
+      double term = 1.0, sum = 1.0;
+      for (int s = 1; s <= k; ++s) sum += term = term * (m - s + 1) / s;
+      total += sum;
+    }
+    return total;
+  };
+  for (const char* spec : {"ehm", "ehm:tree=0"}) {
+    INFO(spec);
+    auto solver = make_single_scan_solver(spec);
+    const SolveResult result = run_solver(*solver, dense(8, 10));
+    REQUIRE(result.report.skipped.empty());
+    const EhmStats& stats = dynamic_cast<Ehm&>(*solver).stats();
+    CHECK(static_cast<double>(stats.nodes) == dense_net(8, 10));
+    CHECK(stats.node_bound == dense_net(8, 10));
+  }
+  // The issue's case: 16 × 24 weights in [0.1, 2] need 6.8e7 nodes, past the default cap of 5e7.
+  // It used to run for a minute before skipped:work_limit; now nothing is built.
+  auto solver = make_single_scan_solver("ehm");
+  const SolveResult refused = run_solver(*solver, dense(16, 24));
+  CHECK(refused.report.skipped == "work_estimate");
+  CHECK(dynamic_cast<Ehm&>(*solver).stats().nodes == 0);
+  CHECK(dynamic_cast<Ehm&>(*solver).stats().node_bound == dense_net(16, 24));
+}
+
+TEST_CASE("ehm: the cap covers the whole solve, bounded before any cluster is built", "[ehm]") {
+  // Two independent dense 6×8 blocks and two lone targets: each block's net has B nodes (its
+  // bound, exact on dense blocks), the lone targets one each.
+  RowMatrix psi = RowMatrix::Zero(14, 18);
+  psi.block(0, 0, 6, 8).setConstant(0.7);
+  psi.block(6, 8, 6, 8).setConstant(1.3);
+  psi(12, 16) = 0.5;
+  psi(13, 17) = 2.0;
+  const SingleScanProblem problem = make_problem(psi);
+  auto solver = make_single_scan_solver("ehm");
+  const SolveResult roomy = run_solver(*solver, problem);  // far below the cap: one pass
+  REQUIRE(roomy.report.skipped.empty());
+  const auto total = dynamic_cast<Ehm&>(*solver).stats().nodes;
+  CHECK(static_cast<double>(total) == dynamic_cast<Ehm&>(*solver).stats().node_bound);
+  // At the cap exactly: the blocks are bounded in a first pass, then solved in the orders it
+  // chose, giving the same numbers.
+  const SolveResult exact_fit = run_solver(*make_single_scan_solver("ehm:max_nodes=" + std::to_string(total)), problem);
+  REQUIRE(exact_fit.report.skipped.empty());
+  CHECK(exact_fit.marginals == roomy.marginals);
+  // One node short: refused with nothing built, although the first block alone would fit.
+  auto tight = make_single_scan_solver("ehm:max_nodes=" + std::to_string(total - 1));
+  CHECK(run_solver(*tight, problem).report.skipped == "work_estimate");
+  CHECK(dynamic_cast<Ehm&>(*tight).stats().nodes == 0);
+  CHECK(dynamic_cast<Ehm&>(*tight).stats().node_bound == static_cast<double>(total));
+}
+
+TEST_CASE("ehm: the bound is within 1.5 of the net on 5x5 and 6x6 grids", "[ehm]") {
+  // bp-marginal-association experiment 3's sizes at spacing 3. The bound is rigorous; its slack
+  // decides how far below max_nodes a net can be and still be refused. (A cap of 1e6 nodes keeps
+  // the test fast: the nets bounded above it are refused, the others compared.)
+  auto solver = make_single_scan_solver("ehm:max_nodes=1000000");
+  double worst = 0.0;
+  int compared = 0;
+  for (const int side : {5, 6}) {
+    for (std::uint32_t trial = 0; trial < 8; ++trial) {
+      const SolveResult result = run_solver(*solver, grid_problem(side, side, 3.0, trial));
+      const EhmStats& stats = dynamic_cast<Ehm&>(*solver).stats();
+      if (!result.report.skipped.empty()) {
+        CHECK(result.report.skipped == "work_estimate");
+        CHECK(stats.node_bound > 1e6);
+        continue;
+      }
+      CHECK(static_cast<double>(stats.edges) <= stats.edge_bound);
+      worst = std::max(worst, stats.node_bound / static_cast<double>(stats.nodes));
+      ++compared;
+    }
+  }
+  CHECK(compared >= 12);
+  CHECK(worst >= 1.0);
+  CHECK(worst <= 1.5);
 }
 
 TEST_CASE("ehm: options are validated", "[ehm]") {
