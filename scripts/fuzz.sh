@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# Runs the libFuzzer targets of fuzz/ (built in build-asan: AddressSanitizer + UBSan) for
+# Runs the libFuzzer targets of tests/fuzz/ (built in build-asan: AddressSanitizer + UBSan) for
 # SECONDS each, FUZZ_JOBS at a time (default: one per core), over their committed seed corpus,
-# fuzz/corpus/<target> (and experiments/ for the experiment parser), and prints per target the
+# tests/fuzz/corpus/<target> (and experiments/ for the experiment parser), and prints per target the
 # inputs tried, the coverage and the corpus grown.
 # A finding (a crash, a sanitizer report, an exception other than InputError, a timeout of 10 s,
 # more than 2 GiB) stops it with status 1 and keeps the input as build-asan/fuzz/<target>-crash-*;
 # reproduce with build-asan/fuzz/fuzz_<target> FILE.
-# FUZZ_KEEP=1 merges the inputs that found new coverage into fuzz/corpus/<target> (minimised).
+# FUZZ_KEEP=1 merges the inputs that found new coverage into tests/fuzz/corpus/<target> (minimised).
 # FUZZ_RECORD=FILE appends one CSV row per target (the long runs the README reports:
-# fuzz/long-runs.csv): date, commit, compiler, target, seconds, inputs tried, their rate, the
+# tests/fuzz/long-runs.csv): date, commit, compiler, target, seconds, inputs tried, their rate, the
 # seed corpus and the inputs that grew it, coverage (edges, features) and peak memory of a run without a finding.
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (default 30 s; targets experiment weights shard_meta spec)
 set -euo pipefail
@@ -26,10 +26,10 @@ for target in "${targets[@]}"; do build+=(--target "fuzz_$target"); done
 bash scripts/sanitizer_build.sh build-asan "address;undefined" -DDABENCH_BUILD_FUZZERS=ON "${build[@]}"
 
 # The commit the runs test (taken now: the corpus merges below change the tree).
-commit=$(git rev-parse --short=7 HEAD)$(git diff --quiet HEAD -- . ':!fuzz/long-runs.csv' ':!fuzz/corpus' || echo +changes)
+commit=$(git rev-parse --short=7 HEAD)$(git diff --quiet HEAD -- . ':!tests/fuzz/long-runs.csv' ':!tests/fuzz/corpus' || echo +changes)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-seeds_of() { echo "$root/fuzz/corpus/$1"; [ "$1" != experiment ] || echo "$root/experiments"; }
+seeds_of() { echo "$root/tests/fuzz/corpus/$1"; [ "$1" != experiment ] || echo "$root/experiments"; }
 # One target's run; its status goes to $work/<target>.status (0: no finding).
 fuzz_target() {
   local target=$1
@@ -65,7 +65,7 @@ for target in "${targets[@]}"; do
     echo "$(date -u +%F),$commit,clang $(clang++-14 -dumpversion),$target,$seconds,$runs,$(stat average_exec_per_sec),$seed_count,$grown,$cov,$features,$(stat peak_rss_mb)" >> "$FUZZ_RECORD"
   fi
   if [ "${FUZZ_KEEP:-0}" = 1 ]; then
-    build-asan/fuzz/fuzz_$target -merge=1 "$root/fuzz/corpus/$target" "$work/$target" > "$work/merge.log" 2>&1
-    echo "fuzz: fuzz/corpus/$target now holds $(ls "$root/fuzz/corpus/$target" | wc -l) inputs"
+    build-asan/fuzz/fuzz_$target -merge=1 "$root/tests/fuzz/corpus/$target" "$work/$target" > "$work/merge.log" 2>&1
+    echo "fuzz: tests/fuzz/corpus/$target now holds $(ls "$root/tests/fuzz/corpus/$target" | wc -l) inputs"
   fi
 done

@@ -2,8 +2,8 @@
 # The whole test suite, what CI runs on a clean checkout (README "Tests"): three builds, each with
 # the tests it exists for:
 #  - release (build/, GCC, -O3): ctest (the Catch2 suite, the Python package's pytest, the
-#    reports' checks, the quick start), scripts/test_mpi.sh (Open MPI on loopback),
-#    scripts/test_faults.sh (a full disk, SIGKILL, then --resume), scripts/test_outside_project.sh
+#    reports' checks, the quick start), tests/scripts/mpi.sh (Open MPI on loopback),
+#    tests/scripts/faults.sh (a full disk, SIGKILL, then --resume), tests/scripts/outside_project.sh
 #    (the installed library from a separate CMake project);
 #  - asan (build-asan/, Clang, AddressSanitizer + UBSan): ctest, then the fuzz targets;
 #  - tsan (build-tsan/, Clang, ThreadSanitizer): the runner's tests (scripts/test_sanitizers.sh).
@@ -86,9 +86,9 @@ if [ "$fast" = 0 ]; then
 fi
 step release ctest ctest --test-dir build -j"$(nproc)" --output-on-failure
 if [ "$fast" = 0 ]; then
-  step release test_mpi bash scripts/test_mpi.sh build
-  step release test_faults bash scripts/test_faults.sh build
-  step release test_outside_project bash scripts/test_outside_project.sh build
+  step release test_mpi bash tests/scripts/mpi.sh build
+  step release test_faults bash tests/scripts/faults.sh build
+  step release test_outside_project bash tests/scripts/outside_project.sh build
   wait_for asan
   step asan ctest bash scripts/test_sanitizers.sh asan-ctest
   step asan fuzz bash scripts/test_sanitizers.sh fuzz

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sanitizers and fuzzing (issue 29), each in its own Clang build folder:
 #  - build-asan: AddressSanitizer + UndefinedBehaviorSanitizer (asserts on, -O1): the Catch2
-#    suite through ctest, then each libFuzzer target of fuzz/ for FUZZ_SECONDS over its committed
+#    suite through ctest, then each libFuzzer target of tests/fuzz/ for FUZZ_SECONDS over its committed
 #    seed corpus (scripts/fuzz.sh). Any report, finding or failed test fails the script.
 #  - build-tsan: ThreadSanitizer on the runner's tests ([run]: threaded runs, resume, shards;
 #    dabench_run_tests, the test files that hold them),

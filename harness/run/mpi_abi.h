@@ -1,5 +1,5 @@
 #pragma once
-// The C interface of libdabench_mpi.so (mpi_module/dabench_mpi.cpp), the only code that links
+// The C interface of libdabench_mpi.so (harness/run/mpi_module.cpp), the only code that links
 // Open MPI. dabench loads it with dlopen only when mpirun launched it (harness/run/mpi_transport.hpp),
 // so a user who never runs under mpirun needs no MPI library at run time. Plain C types, so the
 // module and the program need not share a compiler's C++ ABI. Every function returning int

@@ -20,8 +20,8 @@ DERIVED_FROM = "results/multiscan/fig4"  # the study whose per-item cost the der
 BP_PAPER_BOUND = 0.015  # bp-marginal-association Sec. V-B: "average errors of 0.015 or less in most cases"
 MPI = "mpirun --allow-run-as-root"
 PAIRS = ["a", "b"]
-FUZZ_LONG_RUNS = "fuzz/long-runs.csv"  # written by FUZZ_RECORD=fuzz/long-runs.csv scripts/fuzz.sh SECONDS
-FUZZ_TARGETS = ["experiment", "weights", "shard_meta", "spec"]  # fuzz/CMakeLists.txt
+FUZZ_LONG_RUNS = "tests/fuzz/long-runs.csv"  # written by FUZZ_RECORD=tests/fuzz/long-runs.csv scripts/fuzz.sh SECONDS
+FUZZ_TARGETS = ["experiment", "weights", "shard_meta", "spec"]  # tests/fuzz/CMakeLists.txt
 TEST_STEPS = "tests/timings/steps.csv"  # written by scripts/record_test_timings.py after scripts/test.sh
 TEST_CASES = "tests/timings/cases.csv"
 TEST_RUN_ORDER = ["before", "cold", "warm", "fast"]  # the README's columns; other labels follow
@@ -200,7 +200,7 @@ def study_wall_times(report):
 
 
 def fuzz_long_runs(report):
-    """The long libFuzzer runs recorded by `FUZZ_RECORD=fuzz/long-runs.csv scripts/fuzz.sh`: per
+    """The long libFuzzer runs recorded by `FUZZ_RECORD=tests/fuzz/long-runs.csv scripts/fuzz.sh`: per
     target the time, the inputs tried and their rate, the corpus (seeds, inputs that grew it) and
     the coverage reached, each row a run that ended without a finding."""
     try:
@@ -208,7 +208,7 @@ def fuzz_long_runs(report):
     except data.DataError:
         rows = []
     if not rows:
-        report.value("fuzz.long_runs", "No long run is recorded yet (`fuzz/long-runs.csv` is empty).")
+        report.value("fuzz.long_runs", "No long run is recorded yet (`tests/fuzz/long-runs.csv` is empty).")
         return
     table = [[f"`fuzz_{r['target']}`", markdown.duration(data.num(r, "seconds")), thousands(data.num(r, "inputs")),
               thousands(data.num(r, "inputs_per_second")), r["seed_inputs"], r["new_inputs"], r["edges"], r["features"],

@@ -1,5 +1,5 @@
 // harness/run/shard_meta.hpp: a shard's meta.json as `dabench merge` reads it, called on text
-// (the fuzz target fuzz/fuzz_shard_meta.cpp drives the same functions with arbitrary bytes):
+// (the fuzz target tests/fuzz/fuzz_shard_meta.cpp drives the same functions with arbitrary bytes):
 //  - "K/N" labels: 1 <= K <= N <= 1 000 000, integers only;
 //  - a meta.json without a shard label, with a malformed one or with status other than complete
 //    is refused in one line naming the folder; `threads` is bounded whatever the file says;

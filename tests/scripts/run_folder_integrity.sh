@@ -38,31 +38,8 @@ refuses() {
 same() { "$python" "$root/scripts/same_results.py" "$1" "$2" > same.log || { cat same.log; fail "$2 differs from $1"; }; }
 digest() { find "$1" -type f ! -name .dabench.lock | sort | xargs sha1sum | sha1sum; }  # a dead run's lock is taken over
 
-cat > grid.ini << 'INI'
-scenario = grid
-trials = 300
-seed = 4
-reference = exact
-algorithm = bp
-[scenario]
-rows = 2
-cols = 3
-[sweep]
-spacing = 1, 2, 3
-INI
-cat > long.ini << 'INI'
-scenario = grid
-trials = 4000
-seed = 4
-reference = exact
-algorithm = bp
-algorithm = jt
-[scenario]
-rows = 2
-cols = 3
-[sweep]
-spacing = 1, 2
-INI
+cp "$root"/tests/data/experiments/{grid,long}.ini .
+sed -i "s/^trials = .*/trials = 4000/" long.ini  # long enough to interrupt, short enough to rerun
 "$dabench" run grid.ini --out ref --threads 2 2> /dev/null
 for k in 1 2; do "$dabench" run grid.ini --out shard$k --shard $k/2 --threads 1 2> /dev/null; done
 

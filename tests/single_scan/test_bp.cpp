@@ -397,7 +397,7 @@ TEST_CASE("bp: tiny delta with huge weights still terminates as converged", "[bp
 }
 
 TEST_CASE("bp: weights near 1e308 are solved where no sum overflows, else refused", "[bp]") {
-  // Found by fuzz/fuzz_weights. A lone row 15, 1e308, 1e308, 7.5: its sum overflows, so the
+  // Found by tests/fuzz/fuzz_weights. A lone row 15, 1e308, 1e308, 7.5: its sum overflows, so the
   // beliefs are normalised by the largest term first (p = 5e-309, 7.5e-308, ½, ½, 3.75e-308).
   RowMatrix lone(1, 4);
   lone << 15, 1e308, 1e308, 7.5;

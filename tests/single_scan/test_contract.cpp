@@ -62,7 +62,7 @@ std::vector<NamedProblem> contract_problems() {
   }
   problems.push_back({"more measurements than targets 2 x 7", random_problem(rng, 2, 7, Density::dense)});
   problems.push_back({"more targets than measurements 7 x 2", random_problem(rng, 7, 2, Density::dense)});
-  // Weights beyond double's range within one event (found by fuzz/fuzz_weights): the plain
+  // Weights beyond double's range within one event (found by tests/fuzz/fuzz_weights): the plain
   // message s − ψν of BP cancels to 0, row-scaled products underflow. Refusing is allowed.
   problems.push_back({"psi 1e20 shared by 5 targets", from_psi(RowMatrix::Constant(5, 1, 1e20))});
   problems.push_back({"psi 1e30 gated by 12 targets", from_psi(RowMatrix::Constant(12, 1, 1e30))});

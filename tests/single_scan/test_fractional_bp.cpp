@@ -473,7 +473,7 @@ TEST_CASE("fbp: a dominant pair leaves the rest of the problem to the reduced pr
 }
 
 TEST_CASE("fbp: weights whose row or column sum reaches 2^1020 are refused, not answered wrongly", "[fbp]") {
-  // Two targets sharing a measurement of weight 1e308 (fuzz/fuzz_weights): the sums overflow and
+  // Two targets sharing a measurement of weight 1e308 (tests/fuzz/fuzz_weights): the sums overflow and
   // the messages gave p = ½, ½ for one target and 1, 0 for the other. One order lower: ½, ½ both.
   auto fbp = make_single_scan_solver("fbp");
   SingleScanProblem problem;

@@ -129,6 +129,19 @@ inline SingleScanProblem random_problem(RandomStream& rng, int n, int m, Density
   return problem;
 }
 
+// An n × m problem whose pairs are gated with probability `gated`, each with ψ exponentially
+// distributed of mean 3.
+inline SingleScanProblem gated_exponential_problem(RandomStream& rng, int n, int m, double gated) {
+  SingleScanProblem problem;
+  problem.psi = RowMatrix::Zero(n, m);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < m; ++j) {
+      if (rng.uniform() < gated) problem.psi(i, j) = -3.0 * std::log(1.0 - rng.uniform());
+    }
+  }
+  return problem;
+}
+
 // The density of trial `trial` of the solvers' random sweeps: dense, sparse, extreme in turn.
 inline Density cycled_density(int trial) {
   constexpr Density densities[] = {Density::dense, Density::sparse, Density::extreme};

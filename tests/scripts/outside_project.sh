@@ -7,7 +7,7 @@
 #   - `outside run quickstart-damped.ini` writes every damped-bp row with status ok.
 # Fails loudly (message on stderr, exit status 1) on the first problem; removes its files.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 build=$(realpath "${1:-build}")
 work=$(mktemp -d "${TMPDIR:-/tmp}/dabench-outside-XXXXXX")
 trap 'rm -rf "$work"' EXIT

@@ -9,9 +9,9 @@
 #  - a rank killed mid-run aborts the job, and --resume loses nothing that was written;
 #  - a missing experiment is one error line from rank 0, and dabench without mpirun never
 #    loads the MPI module.
-# Usage: scripts/test_mpi.sh [BUILD_DIR]   (default build; needs openmpi-bin, see scripts/setup.sh)
+# Usage: tests/scripts/mpi.sh [BUILD_DIR]   (default build; needs openmpi-bin, see scripts/setup.sh)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 root=$(pwd)
 build=$(cd "${1:-build}" && pwd)
 dabench="$build/dabench"
@@ -34,56 +34,10 @@ expect() {  # expect WHAT ACTUAL EXPECTED
   [ "$2" = "$3" ] || { echo "test_mpi: $1: got $2, expected $3"; exit 1; }
 }
 
-cat > single.ini <<'INI'
-scenario = grid
-trials = 25
-seed = 11
-reference = exact
-algorithm = bp
-algorithm = bp:delta=1e-3,check_every=1
-[scenario]
-rows = 1
-cols = 3
-[sweep]
-spacing = 1, 3
-INI
-cat > multi.ini <<'INI'
-scenario = bearings
-trials = 10
-seed = 3
-algorithm = jpda-bp
-[scenario]
-particles = 100
-mean_targets = 2
-[sweep]
-scans_per_sensor = 1, 2
-INI
-cat > tracking.ini <<'INI'
-scenario = othr
-trials = 4
-seed = 5
-iterations = true
-algorithm = mptf
-algorithm = jdt-vb
-[scenario]
-scans = 6
-[sweep]
-pd = 0.75, 0.4
-clutter = 5, 20
-INI
-cat > tbd.ini <<'INI'
-scenario = tbd
-trials = 10
-seed = 5
-beliefs = true
-algorithm = tbd-bp:particles=100
-[scenario]
-layout = persistent
-objects = 1
-steps = 4
-columns = 10
-rows = 10
-INI
+# The system tests' experiments, with fewer trials: each runs three ways here.
+cp "$root"/tests/data/experiments/{single,multi,tracking,tbd,long}.ini .
+declare -A trials=([single]=25 [multi]=10 [tracking]=4 [tbd]=10 [long]=3500)
+for name in "${!trials[@]}"; do sed -i "s/^trials = .*/trials = ${trials[$name]}/" $name.ini; done
 
 for kind in single multi tracking tbd; do
   quiet run.log "$dabench" run $kind.ini --out $kind-1 --threads 1
@@ -110,20 +64,8 @@ for kind in multi tracking; do
   echo "test_mpi: $kind: 3 shards, each under mpirun -np 2, merged: equal to the single-process run"
 done
 
-# Long enough to interrupt (mpirun takes up to a second to pass a signal on): about 3 s on two cores.
-cat > long.ini <<'INI'
-scenario = grid
-trials = 3500
-seed = 7
-reference = exact
-algorithm = bp
-algorithm = jt
-[scenario]
-rows = 2
-cols = 3
-[sweep]
-spacing = 1, 2
-INI
+# long.ini at 3500 trials: long enough to interrupt (mpirun takes up to a second to pass a signal
+# on), about 3 s on two cores.
 quiet run.log "$dabench" run long.ini --out long-1 --threads 2
 
 wait_for_rows() {  # wait_for_rows FOLDER: until its trials.csv holds some blocks

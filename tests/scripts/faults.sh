@@ -7,9 +7,9 @@
 #    elsewhere it says so and skips these checks.
 #  - SIGKILL at random moments (fixed seeds) of a threaded run and of an `mpirun` job (mpirun and
 #    every rank at once, as a lost allocation), then --resume: the files of an uninterrupted run every time.
-# Usage: scripts/test_faults.sh [BUILD_DIR]   (default build)
+# Usage: tests/scripts/faults.sh [BUILD_DIR]   (default build)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 root=$(pwd)
 build=$(cd "${1:-build}" && pwd)
 dabench="$build/dabench"
@@ -45,55 +45,7 @@ for name in sorted(os.listdir(folder)):
 PY
 }
 
-cat > single.ini << 'INI'
-scenario = grid
-trials = 400
-seed = 11
-reference = exact
-algorithm = bp
-algorithm = bp:delta=1e-3,check_every=1
-[scenario]
-rows = 1
-cols = 3
-[sweep]
-spacing = 1, 3
-INI
-cat > multi.ini << 'INI'
-scenario = bearings
-trials = 60
-seed = 3
-algorithm = jpda-bp
-[scenario]
-particles = 100
-mean_targets = 6
-[sweep]
-scans_per_sensor = 1, 2
-INI
-cat > tracking.ini << 'INI'
-scenario = othr
-trials = 6
-seed = 5
-iterations = true
-algorithm = mptf
-algorithm = jdt-vb
-[scenario]
-scans = 6
-[sweep]
-pd = 0.75, 0.4
-INI
-cat > tbd.ini << 'INI'
-scenario = tbd
-trials = 24
-seed = 5
-beliefs = true
-algorithm = tbd-bp:particles=100
-[scenario]
-layout = persistent
-objects = 1
-steps = 4
-columns = 10
-rows = 10
-INI
+cp "$root"/tests/data/experiments/{single,multi,tracking,tbd,long}.ini .
 declare -A per_item=([single]=3 [multi]=1 [tracking]=2 [tbd]=1)
 for kind in single multi tracking tbd; do
   "$dabench" run $kind.ini --out $kind-ref --threads 2 2> /dev/null
@@ -135,19 +87,6 @@ else
 fi
 
 # ---- SIGKILL at random moments ----------------------------------------------------------------
-cat > long.ini << 'INI'
-scenario = grid
-trials = 6000
-seed = 7
-reference = exact
-algorithm = bp
-algorithm = jt
-[scenario]
-rows = 2
-cols = 3
-[sweep]
-spacing = 1, 2
-INI
 "$dabench" run long.ini --out long-ref --threads 2 2> /dev/null
 kill_at() {  # kill_at DELAY COMMAND...: starts it, and after DELAY s SIGKILLs every process of it (mpirun and its ranks)
   local delay=$1; shift
