@@ -5,8 +5,9 @@
 //   mean_diff ± t_{0.975, n−1} · sd / √n   the mean paired difference and its 95 % interval;
 //   wilcoxon_p   the two-sided Wilcoxon signed-rank test of "d is symmetric about 0" (zero
 //                differences dropped, Wilcoxon's convention): the exact null distribution when
-//                at most 50 differences remain and no two |d| tie, else the normal approximation
-//                with the tie correction of the variance, without continuity correction — the
+//                at most 50 differences remain, none was zero and no two |d| tie, else the
+//                normal approximation with the tie correction of the variance, without
+//                continuity correction — the
 //                conventions of scipy.stats.wilcoxon (zero_method="wilcox", correction=False;
 //                its method="auto" picks the same, except that with ties and n ≤ 50 scipy 1.10
 //                truncates a half-integer rank sum into its exact table, which we do not);

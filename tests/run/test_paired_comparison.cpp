@@ -1,7 +1,8 @@
 // Tests of `dabench compare`'s statistics (harness/run/paired_comparison.hpp): the signed-rank
 // p-value counted by hand on small exact cases and checked against scipy.stats.wilcoxon's values
-// for the normal approximation (with and without ties), Holm's adjustment worked by hand, the t
-// interval, and compare_runs on run folders written here (pairing, point order, refusals).
+// for the normal approximation (ties, zeros, more than 50 differences), Holm's adjustment worked
+// by hand, the t interval from its closed form at two degrees of freedom, and compare_runs on
+// run folders written here (pairing, point order, refusals).
 // python/tests/test_compare.py checks the same statistics against scipy on random pairs.
 #include <catch2/catch.hpp>
 
@@ -18,7 +19,7 @@
 namespace DABENCH_TEST_FILE {
 
 using namespace dabench;
-using namespace dabench::test;
+using namespace dabench::test::cli;
 
 namespace {
 
@@ -42,8 +43,6 @@ std::string write_run(const TempDir& dir, const std::string& name, const std::ve
 TEST_CASE("paired comparison: exact signed-rank p-values counted by hand", "[paired_comparison]") {
   // Five positive differences: W+ = 15 is the largest of 2^5 equally likely sign patterns.
   CHECK(wilcoxon_signed_rank_p({1, 2, 3, 4, 5}) == Approx(2.0 / 32).epsilon(1e-14));
-  // Zero differences are dropped first (Wilcoxon's convention).
-  CHECK(wilcoxon_signed_rank_p({0, 1, 0, 2, 3, 4, 5}) == Approx(2.0 / 32).epsilon(1e-14));
   // d = 1, −2, 3, 4, −5, 6: W+ = 14 of 21; 18 of the 64 subsets of {1..6} sum to 7 or less.
   CHECK(wilcoxon_signed_rank_p({1, -2, 3, 4, -5, 6}) == Approx(36.0 / 64).epsilon(1e-14));
   CHECK(wilcoxon_signed_rank_p({-1, -2, -3, -4, -5}) == Approx(2.0 / 32).epsilon(1e-14));  // symmetric
@@ -51,10 +50,13 @@ TEST_CASE("paired comparison: exact signed-rank p-values counted by hand", "[pai
   CHECK(std::isnan(wilcoxon_signed_rank_p({})));
 }
 
-TEST_CASE("paired comparison: the normal approximation equals scipy's, with and without ties", "[paired_comparison]") {
+TEST_CASE("paired comparison: the normal approximation equals scipy's: ties, zeros, n > 50", "[paired_comparison]") {
   // scipy.stats.wilcoxon(d, zero_method="wilcox", correction=False, method="approx").pvalue:
   // ties (|d| = 1, 2, 3 repeated) select the normal approximation with the tie-corrected variance.
   CHECK(wilcoxon_signed_rank_p({1, 1, 2, -2, 3, 3, 3, -4}) == Approx(0.35916920795382856).epsilon(1e-12));
+  // Zero differences are dropped (Wilcoxon's convention) and, as scipy's method="auto" does,
+  // send the test to the normal approximation: the five left are not tested exactly (0.0625).
+  CHECK(wilcoxon_signed_rank_p({0, 1, 0, 2, 3, 4, 5}) == Approx(0.043114446783075355).epsilon(1e-12));
   // 60 untied differences (more than 50): every third one negative.
   std::vector<double> d;
   for (int k = 1; k <= 60; ++k) d.push_back(k % 3 != 0 ? k : -k);
@@ -62,12 +64,14 @@ TEST_CASE("paired comparison: the normal approximation equals scipy's, with and 
 }
 
 TEST_CASE("paired comparison: t interval, shares and Holm's adjustment", "[paired_comparison]") {
-  // d = 1, 2, 3: mean 2, sd 1, t_{0.975, 2} = 4.302652729911275 (scipy.stats.t.ppf).
+  // d = 1, 2, 3: mean 2, sd 1; with two degrees of freedom the t quantile has the closed form
+  // t_p = (2p − 1) / √(2p(1 − p)): t_{0.975} = 0.95 / √0.04875.
+  const double t = 0.95 / std::sqrt(2.0 * 0.975 * 0.025);
   const PairedStatistics three = paired_statistics({1, 2, 3});
   CHECK(three.n == 3);
   CHECK(three.mean_diff == Approx(2.0).epsilon(1e-15));
-  CHECK(three.ci_low == Approx(2.0 - 4.302652729911275 / std::sqrt(3.0)).epsilon(1e-12));
-  CHECK(three.ci_high == Approx(2.0 + 4.302652729911275 / std::sqrt(3.0)).epsilon(1e-12));
+  CHECK(three.ci_low == Approx(2.0 - t / std::sqrt(3.0)).epsilon(1e-13));
+  CHECK(three.ci_high == Approx(2.0 + t / std::sqrt(3.0)).epsilon(1e-13));
   CHECK(three.a_better == 0.0);
   const PairedStatistics mixed = paired_statistics({-1, 0, 2, 3});
   CHECK(mixed.a_better == 0.25);  // A lower in one trial of four
