@@ -56,7 +56,8 @@
 //    at most 16 × max_nodes. Both are enforced before anything is built, by an upper bound on
 //    every layer from the tree and the key spaces (net_bound, ehm_bound.cpp: the least of 2^|K|,
 //    the subsets of K no larger than the number of ancestors gating K, the product over those
-//    ancestors of 1 + their measurements in K, and the parent's layer times its choices). A
+//    ancestors of 1 + their measurements in K (also split into measurements one ancestor gates
+//    and those several do), and the parent's layer times its choices). A
 //    solve whose bound passes a cap is refused at once as skipped:work_estimate; a solve within
 //    it cannot pass the cap, so none spends its budget and then gives up. With several clusters
 //    of two or more targets, all are bounded before the first is built. The bound is exact on

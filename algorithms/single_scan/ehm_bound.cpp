@@ -53,6 +53,10 @@ bool Ehm::surely_within_caps() const {
 //   2^|K(c)|                      (every subset),
 //   Σ_{s ≤ m} C(|K(c)|, s)         (m = the ancestors gating a measurement of K(c)),
 //   Π_a (1 + |gate(a) ∩ K(c)|)     (over those ancestors a: one of its measurements, or none),
+//   Π_a (1 + p_a) · Σ_{s ≤ m'} C(k', s)
+//                                  (p_a = the measurements of K(c) that a alone of the ancestors
+//                                  gates: at most one of them each; k' = those gated by two or
+//                                  more ancestors, m' = the ancestors gating one of them),
 //   N_p · choices(p)               (p the parent: one child key per node and choice).
 // A root's layer has one node. build_net stores N_p · choices(p) · children(p) edges for p.
 // Positions are visited top-down (a parent's position is smaller than its children's).
