@@ -17,11 +17,6 @@ using namespace dabench::test;
 
 namespace {
 
-// `spec`'s solver on `problem`.
-SolveResult solve(const std::string& spec, const SingleScanProblem& problem) {
-  return run_solver(*make_single_scan_solver(spec), problem);
-}
-
 // Every event with its weight, by enumeration (the test's own).
 struct Event {
   std::vector<int> measurement;  // per target, 0 = missed
@@ -51,7 +46,7 @@ TEST_CASE("kbest-jpda: exact when k covers every event, with captured mass 1", "
   for (int trial = 0; trial < 80; ++trial) {
     const int n = 1 + static_cast<int>(rng.uniform() * 5), m = static_cast<int>(rng.uniform() * 5);
     const SingleScanProblem problem = gated_exponential_problem(rng, n, m, 0.6);
-    const SolveResult result = solve("kbest-jpda:k=100000", problem);
+    const SolveResult result = run_solver(*make_single_scan_solver("kbest-jpda:k=100000"), problem);
     REQUIRE(result.report.skipped.empty());
     CHECK((result.marginals - brute_force_marginals(problem).marginals).cwiseAbs().maxCoeff() < 1e-12);
     CHECK(result.report.converged);
@@ -78,7 +73,7 @@ TEST_CASE("kbest-jpda: k events are the k most probable, renormalised, and their
       for (int i = 0; i < 4; ++i) expected(i, events[e].measurement[static_cast<std::size_t>(i)]) += events[e].weight;
     }
     expected /= kept;
-    const SolveResult result = solve("kbest-jpda:k=" + std::to_string(k), problem);
+    const SolveResult result = run_solver(*make_single_scan_solver("kbest-jpda:k=" + std::to_string(k)), problem);
     REQUIRE(result.report.skipped.empty());
     CHECK((result.marginals - expected).cwiseAbs().maxCoeff() < 1e-12);
     CHECK_FALSE(result.report.converged);

@@ -15,22 +15,13 @@ namespace DABENCH_TEST_FILE {
 using namespace dabench;
 using namespace dabench::test;
 
-namespace {
-
-// `spec`'s solver on `problem`.
-SolveResult solve(const std::string& spec, const SingleScanProblem& problem) {
-  return run_solver(*make_single_scan_solver(spec), problem);
-}
-
-}  // namespace
-
 TEST_CASE("permanent: equals enumeration on random problems of either shape", "[permanent]") {
   RandomStream rng(41, 0, 0);
   double worst = 0.0;
   for (int trial = 0; trial < 150; ++trial) {
     const int n = 1 + static_cast<int>(rng.uniform() * 6), m = static_cast<int>(rng.uniform() * 7);
     const SingleScanProblem problem = gated_exponential_problem(rng, n, m, trial % 2 == 0 ? 1.0 : 0.4);
-    const SolveResult result = solve("permanent", problem);
+    const SolveResult result = run_solver(*make_single_scan_solver("permanent"), problem);
     REQUIRE(result.report.skipped.empty());
     worst = std::max(worst, (result.marginals - brute_force_marginals(problem).marginals).cwiseAbs().maxCoeff());
   }
@@ -43,12 +34,12 @@ TEST_CASE("permanent: huge and tiny weights, and the memory limit", "[permanent]
   problem.psi << 1e100, 1e-100, 3,  // events up to 1e300: the brute force's products stay finite
                  2, 1e100, 1e-80,
                  1e50, 5, 1e100;
-  const SolveResult result = solve("permanent", problem);
+  const SolveResult result = run_solver(*make_single_scan_solver("permanent"), problem);
   REQUIRE(result.report.skipped.empty());
   CHECK((result.marginals - brute_force_marginals(problem).marginals).cwiseAbs().maxCoeff() < 1e-12);
   RandomStream rng(43, 0, 0);
   const SingleScanProblem big = gated_exponential_problem(rng, 24, 24, 1.0);  // 27 · 2^24 doubles: 3.4 GiB
-  CHECK(solve("permanent:memory_mb=1024", big).report.skipped == "memory");
+  CHECK(run_solver(*make_single_scan_solver("permanent:memory_mb=1024"), big).report.skipped == "memory");
 }
 
 TEST_CASE("permanent: refuses where underflow in its scaled layers could move a probability", "[permanent]") {
@@ -61,9 +52,10 @@ TEST_CASE("permanent: refuses where underflow in its scaled layers could move a 
   problem.psi << 170, 1e30, 0,
                  1, 1e300, 0,
                  1, 1e300, 0;
-  const SolveResult result = solve("permanent", problem);
+  const SolveResult result = run_solver(*make_single_scan_solver("permanent"), problem);
   CHECK(result.report.skipped == "numerical");
-  const SolveResult kept = solve("kbest-jpda:k=100", problem);  // the events' weights stay relative to the best
+  // k-best JPDA keeps the events' weights relative to the best one: no underflow.
+  const SolveResult kept = run_solver(*make_single_scan_solver("kbest-jpda:k=100"), problem);
   REQUIRE(kept.report.skipped.empty());
   CHECK(kept.marginals(1, 0) == Approx(kept.marginals(2, 0)).epsilon(1e-12));
 }
