@@ -1,21 +1,15 @@
 // dabench.algorithms() and dabench.scenarios(): what `dabench list` prints, as data.
 #include <string>
-#include <type_traits>
 #include <variant>
 
 #include <fmt/format.h>
 
 #include "harness/core/errors.hpp"
-#include "harness/multi_scan/registry.hpp"
-#include "harness/single_scan/registry.hpp"
-#include "harness/tbd/registry.hpp"
-#include "harness/tracking/registry.hpp"
+#include "harness/run/problem_kind.hpp"
 #include "python/bindings.hpp"
 
 namespace dabench::python {
 namespace {
-
-constexpr const char* kKinds = "single_scan, multi_scan, tracking or tbd";
 
 // A parameter's default as a Python value (a named choice as its name).
 py::object default_value(const ParamList::Entry& entry) {
@@ -23,11 +17,10 @@ py::object default_value(const ParamList::Entry& entry) {
   return std::visit([](auto* field) -> py::object { return py::cast(*field); }, entry.target);
 }
 
-template <class Product>
-void describe(py::list& out, const Registry<Product>& registry, const char* kind) {
-  for (const auto& [name, entry] : registry.entries()) {
+void describe(py::list& out, const std::vector<CatalogueEntry>& entries, std::string_view kind) {
+  for (const CatalogueEntry& entry : entries) {
     py::list params;
-    for (const ParamList::Entry& param : entry.defaults) {
+    for (const ParamList::Entry& param : *entry.params) {
       py::dict row;
       row["name"] = param.key;
       row["default"] = default_value(param);
@@ -36,37 +29,36 @@ void describe(py::list& out, const Registry<Product>& registry, const char* kind
       params.append(row);
     }
     py::dict row;
-    row["name"] = name;
-    row["kind"] = kind;
-    row["description"] = entry.summary;
+    row["name"] = *entry.name;
+    row["kind"] = std::string(kind);
+    row["description"] = *entry.summary;
     row["params"] = params;
     out.append(row);
   }
 }
 
-void check_kind(const std::string& kind) {
-  if (kind != "single_scan" && kind != "multi_scan" && kind != "tracking" && kind != "tbd") {
-    throw InputError(fmt::format("unknown kind '{}' ({})", kind, kKinds));
+// The kinds `kind` names: every one when empty; InputError for a name of none.
+std::vector<const ProblemKind*> kinds_named(const std::string& kind) {
+  std::vector<const ProblemKind*> named;
+  std::string keys;
+  const auto& kinds = problem_kinds();
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    if (kind.empty() || kinds[k]->key() == kind) named.push_back(kinds[k]);
+    keys += fmt::format("{}{}", k == 0 ? "" : k + 1 == kinds.size() ? " or " : ", ", kinds[k]->key());
   }
+  if (named.empty()) throw InputError(fmt::format("unknown kind '{}' ({})", kind, keys));
+  return named;
 }
 
 py::list algorithms(const std::string& kind) {
-  if (!kind.empty()) check_kind(kind);
   py::list out;
-  if (kind.empty() || kind == "single_scan") describe(out, single_scan_algorithm_registry(), "single_scan");
-  if (kind.empty() || kind == "multi_scan") describe(out, multi_scan_algorithm_registry(), "multi_scan");
-  if (kind.empty() || kind == "tracking") describe(out, tracking_tracker_registry(), "tracking");
-  if (kind.empty() || kind == "tbd") describe(out, tbd_tracker_registry(), "tbd");
+  for (const ProblemKind* named : kinds_named(kind)) describe(out, named->algorithm_entries(), named->key());
   return out;
 }
 
 py::list scenarios(const std::string& kind) {
-  if (!kind.empty()) check_kind(kind);
   py::list out;
-  if (kind.empty() || kind == "single_scan") describe(out, single_scan_scenario_registry(), "single_scan");
-  if (kind.empty() || kind == "multi_scan") describe(out, multi_scan_scenario_registry(), "multi_scan");
-  if (kind.empty() || kind == "tracking") describe(out, tracking_scenario_registry(), "tracking");
-  if (kind.empty() || kind == "tbd") describe(out, tbd_scenario_registry(), "tbd");
+  for (const ProblemKind* named : kinds_named(kind)) describe(out, named->scenario_entries(), named->key());
   return out;
 }
 

@@ -229,7 +229,7 @@ py::dict draw(const std::string& scenario, std::optional<std::uint64_t> seed, st
     options.experiment_path = scenario;
     options.seed = seed;
     const RunPlan plan = make_run_plan(options);
-    if (plan.kind != RunKind::single_scan) throw InputError(fmt::format("draw: {} is not a single-scan experiment", scenario));
+    if (plan.kind != &single_scan_kind()) throw InputError(fmt::format("draw: {} is not a single-scan experiment", scenario));
     if (point >= static_cast<std::int64_t>(plan.point_settings.size())) {
       throw InputError(fmt::format("draw: point {} of {}: it has points 0 to {}", point, scenario, plan.point_settings.size() - 1));
     }

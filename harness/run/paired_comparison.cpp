@@ -19,6 +19,7 @@
 #include "harness/core/errors.hpp"
 #include "harness/core/input_file.hpp"
 #include "harness/core/json.hpp"
+#include "harness/run/problem_kind.hpp"
 #include "harness/run/run_meta.hpp"
 
 namespace dabench {
@@ -171,14 +172,19 @@ void by_trial(std::vector<std::pair<long long, double>>& values) {
   values = std::move(last);
 }
 
+// FOLDER/trials.csv, which must exist.
+std::string trials_file(const std::string& folder) {
+  std::string path = (std::filesystem::path(folder) / "trials.csv").string();
+  if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("compare: {}: no trials.csv (a run folder?)", folder));
+  return path;
+}
+
 // A run's trials.csv read point by point (its rows are in point order, as dabench writes them),
 // so that memory holds one point's values of the compared algorithms, not the run's.
 class PointStream {
  public:
-  // `metrics` empty: the kind's default (its error and time columns), filled in.
-  PointStream(const std::string& folder, std::vector<std::string> algorithms, std::vector<std::string>& metrics)
-      : path_((std::filesystem::path(folder) / "trials.csv").string()), algorithms_(std::move(algorithms)) {
-    if (!std::filesystem::is_regular_file(path_)) throw InputError(fmt::format("compare: {}: no trials.csv (a run folder?)", folder));
+  PointStream(const std::string& folder, std::vector<std::string> algorithms, const std::vector<std::string>& metrics)
+      : path_(trials_file(folder)), algorithms_(std::move(algorithms)) {
     check_input_file(path_, "trials file", kMaxTrialsBytes);
     in_.open(path_, std::ios::binary);
     std::string line;
@@ -191,11 +197,6 @@ class PointStream {
       throw InputError(fmt::format("compare: {}: not a dabench trials.csv (point, trial, algorithm columns)", path_));
     }
     for (int c = 0; c < trial_; ++c) point_header_ += (c ? "," : "") + header_[static_cast<std::size_t>(c)];
-    if (metrics.empty()) {
-      for (const char* name : {"max_error", "mean_hpd", "gospa", "mospa_km", "time_us", "step_time_us", "tet_s"}) {
-        if (column_of(header_, name) >= 0) metrics.push_back(name);
-      }
-    }
     for (const std::string& metric : metrics) {
       const int c = column_of(header_, metric);
       if (c < 0 || c <= algorithm_) {
@@ -299,6 +300,17 @@ std::string meta_field(const std::string& folder, const char* key) {
   return *value;
 }
 
+// The metrics compared when none is named: those of the run's problem kind (meta.json's scenario).
+std::vector<std::string> default_metrics(const std::string& folder) {
+  const std::string scenario = meta_field(folder, "scenario");
+  const ProblemKind* kind = kind_of_scenario(scenario);
+  if (kind == nullptr) {
+    throw InputError(fmt::format("compare: {}: scenario '{}' is of no problem kind this build knows: name the metric "
+                                 "columns (--metric)", folder, scenario));
+  }
+  return kind->compared_metrics();
+}
+
 }  // namespace
 
 Comparison compare_runs(const CompareOptions& options) {
@@ -309,7 +321,8 @@ Comparison compare_runs(const CompareOptions& options) {
   }
   require_complete_run(options.run_a, "compare");
   if (two_runs) require_complete_run(options.run_b, "compare");
-  std::vector<std::string> metrics = options.metrics;
+  static_cast<void>(trials_file(options.run_a));  // before meta.json: a folder that is no run says so
+  const std::vector<std::string> metrics = options.metrics.empty() ? default_metrics(options.run_a) : options.metrics;
   Comparison comparison;
   PointStream a(options.run_a, options.algorithms, metrics);
   std::optional<PointStream> b;

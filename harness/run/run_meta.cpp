@@ -12,8 +12,6 @@
 #include "harness/core/input_file.hpp"
 #include "harness/core/json.hpp"
 #include "harness/core/params.hpp"
-#include "harness/run/tbd_execution.hpp"
-#include "harness/run/tracking_execution.hpp"
 
 namespace dabench {
 
@@ -109,14 +107,7 @@ std::string run_meta_json(const RunPlan& plan, const RunRecord& record) {
       .add("end_time", record.end_time)
       .add("wall_seconds", record.wall_seconds)
       .add("work_fraction", record.work_fraction);
-  if (plan.kind == RunKind::tracking) {
-    meta.add_raw("tracking_metrics", tracking_metrics_json(
-                                         make_options<TrackingMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
-  }
-  if (plan.kind == RunKind::tbd) {
-    meta.add_raw("tbd_metrics",
-                 tbd_metrics_json(make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
-  }
+  plan.kind->add_meta(plan.experiment, meta);
   if (!record.mixed_builds.empty()) {
     std::vector<std::string> builds;
     for (const RecordedBuild& shard : record.mixed_builds) builds.push_back(shard.describe());

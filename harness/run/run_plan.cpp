@@ -8,12 +8,6 @@
 #include <fmt/format.h>
 
 #include "harness/core/csv.hpp"
-#include "harness/multi_scan/registry.hpp"
-#include "harness/single_scan/registry.hpp"
-#include "harness/tbd/metrics.hpp"
-#include "harness/tbd/registry.hpp"
-#include "harness/tracking/metrics.hpp"
-#include "harness/tracking/registry.hpp"
 
 namespace dabench {
 
@@ -28,54 +22,25 @@ std::string point_columns(const std::vector<KeyValue>& params) {
   return header;
 }
 
-std::string_view kind_name(RunKind kind) {
-  switch (kind) {
-    case RunKind::single_scan: return "single-scan";
-    case RunKind::multi_scan: return "multi-scan";
-    case RunKind::tracking: return "tracking";
-    case RunKind::tbd: return "track-before-detect";
-  }
-  return {};
-}
-
 // A SPEC naming an algorithm of another kind than the scenario's: say so.
-std::string kind_hint(const std::string& spec, RunKind kind, const std::string& scenario) {
+std::string kind_hint(const std::string& spec, const ProblemKind& kind, const std::string& scenario) {
   std::string name;
   try {
     name = parse_spec(spec).name;
   } catch (const InputError&) {
     return {};
   }
-  const auto hint = [&](std::string_view what) {
-    return fmt::format(" ('{}' is a {}; scenario '{}' is {})", name, what, scenario, kind_name(kind));
-  };
-  if (kind != RunKind::single_scan && single_scan_algorithm_registry().find(name) != nullptr) return hint("single-scan algorithm");
-  if (kind != RunKind::multi_scan && multi_scan_algorithm_registry().find(name) != nullptr) return hint("multi-scan algorithm");
-  if (kind != RunKind::tracking && tracking_tracker_registry().find(name) != nullptr) return hint("tracker");
-  if (kind != RunKind::tbd && tbd_tracker_registry().find(name) != nullptr) return hint("track-before-detect tracker");
-  return {};
-}
-
-void check_spec(const std::string& spec, RunKind kind) {
-  switch (kind) {
-    case RunKind::single_scan: make_single_scan_solver(spec); return;
-    case RunKind::multi_scan: make_multi_scan_solver(spec); return;
-    case RunKind::tracking: make_tracker(spec); return;
-    case RunKind::tbd: make_tbd_tracker(spec); return;
+  for (const ProblemKind* other : problem_kinds()) {
+    if (other != &kind && other->has_algorithm(name)) {
+      return fmt::format(" ('{}' is a {}; scenario '{}' is {})", name, other->algorithm_noun(), scenario, kind.name());
+    }
   }
+  return {};
 }
 
 }  // namespace
 
-const std::vector<std::string>& RunPlan::metric_columns() const {
-  switch (kind) {
-    case RunKind::multi_scan: return multi_scan_metric_columns();
-    case RunKind::tracking: return tracking_metric_columns();
-    case RunKind::tbd: return tbd_metric_columns();
-    case RunKind::single_scan: break;
-  }
-  return single_scan_metric_columns();
-}
+const std::vector<std::string>& RunPlan::metric_columns() const { return kind->metric_columns(); }
 
 std::string RunPlan::trials_header() const {
   std::string header = point_columns(point_params.front()) + ",trial,seed,algorithm,status";
@@ -90,33 +55,7 @@ std::vector<std::string> RunPlan::output_files() const {
 }
 
 std::vector<ItemFile> RunPlan::item_files() const {
-  const std::string point = point_columns(point_params.front());
-  switch (kind) {
-    case RunKind::multi_scan: return {{"targets.csv", point + ",trial,seed,algorithm,target,hpd,entropy,hpd_likelihood\n"}};
-    case RunKind::tracking: {
-      std::vector<ItemFile> files = {
-          {"tracks.csv", point + ",trial,algorithm,track,confirmed,scan,g,g_dot,theta,theta_dot,"
-                                 "var_g,var_g_dot,var_theta,var_theta_dot\n"},
-          {"measurements.csv", point + ",trial,scan,r,r_dot,azimuth,origin_target,origin_path\n"}};
-      if (experiment.record_iterations) {
-        std::string header = point + ",trial,seed,algorithm,iteration";
-        for (const std::string& metric : tracking_iteration_metric_columns()) header += "," + metric;
-        files.push_back({"iterations.csv", header + "\n"});
-      }
-      return files;
-    }
-    case RunKind::tbd: {
-      std::vector<ItemFile> files = {
-          {"steps.csv", point + ",trial,seed,algorithm,k,n_objects,n_estimates,gospa,gospa_p2,localisation,missed,"
-                                "false,time_us\n"},
-          {"estimates.csv", point + ",trial,algorithm,k,label,existence,x,y,vx,vy\n"},
-          {"frames.csv", point + ",trial,k,column,row,z1,z2\n"}};
-      if (experiment.record_beliefs) files.push_back({"beliefs.csv", point + ",trial,algorithm,k,label,existence,x,y,weight\n"});
-      return files;
-    }
-    case RunKind::single_scan: break;
-  }
-  return {};
+  return kind->item_files(point_columns(point_params.front()), experiment);
 }
 
 std::string RunPlan::fingerprint() const {
@@ -213,54 +152,43 @@ RunPlan make_run_plan(Experiment loaded, const RunOptions& options) {
       plan.shard ? fmt::format("{}-shard-{}-of-{}", experiment.output, plan.shard->index, plan.shard->count)
                  : experiment.output);
 
-  const auto* single_scan = single_scan_scenario_registry().find(experiment.scenario);
-  const auto* multi_scan = multi_scan_scenario_registry().find(experiment.scenario);
-  const auto* tracking = tracking_scenario_registry().find(experiment.scenario);
-  const auto* tbd = tbd_scenario_registry().find(experiment.scenario);
-  if (single_scan == nullptr && multi_scan == nullptr && tracking == nullptr && tbd == nullptr) {
-    std::string known = single_scan_scenario_registry().names();
-    for (const std::string& more : {multi_scan_scenario_registry().names(), tracking_scenario_registry().names(),
-                                    tbd_scenario_registry().names()}) {
-      if (!more.empty()) known += ", " + more;
+  plan.kind = kind_of_scenario(experiment.scenario);
+  if (plan.kind == nullptr) {
+    std::string known;
+    for (const ProblemKind* kind : problem_kinds()) {
+      const std::string names = kind->scenario_names();
+      if (!names.empty()) known += (known.empty() ? "" : ", ") + names;
     }
     throw InputError(fmt::format("{}: unknown scenario '{}' (known: {})", path, experiment.scenario, known));
   }
-  plan.kind = multi_scan != nullptr ? RunKind::multi_scan
-              : tracking != nullptr ? RunKind::tracking
-              : tbd != nullptr      ? RunKind::tbd
-                                    : RunKind::single_scan;
+  const ProblemKind& kind = *plan.kind;
   if (!experiment.metric_settings.empty()) {
-    if (plan.kind != RunKind::tbd && plan.kind != RunKind::tracking) {
+    if (!kind.has_metric_options()) {
       throw InputError(fmt::format("{}: scenario '{}' is {}, whose metrics have no [metrics] options (remove the "
-                                   "section)", path, experiment.scenario, kind_name(plan.kind)));
+                                   "section)", path, experiment.scenario, kind.name()));
     }
     try {
-      if (plan.kind == RunKind::tbd) make_options<TbdMetricsOptions>(experiment.metric_settings, "[metrics]");
-      else make_options<TrackingMetricsOptions>(experiment.metric_settings, "[metrics]");
+      kind.check_metric_options(experiment.metric_settings);
     } catch (const InputError& error) {
       throw InputError(fmt::format("{}: {}", path, error.what()));
     }
   }
-  if (experiment.record_iterations && plan.kind != RunKind::tracking) {
+  if (experiment.record_iterations && !kind.records_iterations()) {
     throw InputError(fmt::format("{}: 'iterations = true' records tracker iterations, but scenario '{}' is {} "
-                                 "(remove the line)", path, experiment.scenario, kind_name(plan.kind)));
+                                 "(remove the line)", path, experiment.scenario, kind.name()));
   }
-  if (experiment.record_beliefs && plan.kind != RunKind::tbd) {
+  if (experiment.record_beliefs && !kind.records_beliefs()) {
     throw InputError(fmt::format("{}: 'beliefs = true' records track-before-detect beliefs, but scenario '{}' is {} "
-                                 "(remove the line)", path, experiment.scenario, kind_name(plan.kind)));
+                                 "(remove the line)", path, experiment.scenario, kind.name()));
   }
-  if (plan.kind != RunKind::single_scan && !experiment.references.empty()) {
+  if (!kind.shares_items() && !experiment.references.empty()) {
     throw InputError(fmt::format("{}: scenario '{}' is {}: its metrics are against the truth, so "
                                  "'reference' lines are not used (remove them)", path, experiment.scenario,
-                                 kind_name(plan.kind)));
+                                 kind.name()));
   }
   const auto resolve = [&](std::size_t p) {
     try {
-      const std::vector<KeyValue>& settings = experiment.points[p];
-      return multi_scan != nullptr ? multi_scan->resolve(settings)
-             : tracking != nullptr ? tracking->resolve(settings)
-             : tbd != nullptr      ? tbd->resolve(settings)
-                                   : single_scan->resolve(settings);
+      return kind.resolve(experiment.scenario, experiment.points[p]);
     } catch (const InputError& error) {
       throw InputError(fmt::format("{}: sweep point {}: {}", path, p, error.what()));
     }
@@ -295,9 +223,9 @@ RunPlan make_run_plan(Experiment loaded, const RunOptions& options) {
   }
   for (const std::string& spec : plan.specs) {
     try {
-      check_spec(spec, plan.kind);
+      kind.check_algorithm(spec);
     } catch (const InputError& error) {
-      throw InputError(fmt::format("{}: {}{}", path, error.what(), kind_hint(spec, plan.kind, experiment.scenario)));
+      throw InputError(fmt::format("{}: {}{}", path, error.what(), kind_hint(spec, kind, experiment.scenario)));
     }
   }
   return plan;

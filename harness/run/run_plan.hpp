@@ -1,32 +1,20 @@
 #pragma once
 // A fully checked experiment: the resolved parameters of every sweep point and the algorithm
-// SPECs to run, built before any output is written. The scenario's kind decides the kind of
-// run: a single-scan scenario runs single-scan algorithms against a reference; a multi-scan
-// scenario runs multi-scan algorithms, measured against the scenario's truth (no reference),
-// and also writes targets.csv (one row per target); a tracking scenario runs trackers against
-// the truth and also writes tracks.csv and measurements.csv (harness/run/tracking_execution.hpp),
-// and iterations.csv when the experiment says `iterations = true` (an error for other kinds);
-// a track-before-detect scenario runs TBD trackers frame by frame and also writes steps.csv,
-// estimates.csv and frames.csv (harness/run/tbd_execution.hpp). The experiment's [metrics]
-// lines set the kind's metric options (track-before-detect and tracking; an error for other kinds).
+// SPECs to run, built before any output is written. The scenario's kind (harness/run/problem_kind.hpp,
+// one descriptor per kind in harness/run/kinds/) decides the rest: which algorithms the
+// experiment may name, whether it has references (single scan: algorithms against a reference)
+// or is measured against the scenario's truth, which of `iterations = true`, `beliefs = true`
+// and a [metrics] section it may hold, trials.csv's metric columns and the per-item files.
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/core/experiment.hpp"
+#include "harness/run/problem_kind.hpp"
 #include "harness/run/runner.hpp"
 
 namespace dabench {
-
-enum class RunKind { single_scan, multi_scan, tracking, tbd };
-
-// A per-item file beside trials.csv: its rows start with the point's prefix then `trial`, in
-// item order, so --resume can trim it to the items trials.csv holds.
-struct ItemFile {
-  std::string name;    // e.g. "targets.csv"
-  std::string header;  // with its newline
-};
 
 // Shards are made of blocks of items: shard K of N runs blocks K − 1, K − 1 + N, K − 1 + 2N, ...
 // (round robin, so every shard gets a share of each sweep point's cost). Inside a process, the
@@ -39,7 +27,7 @@ struct RunPlan {
   std::vector<std::vector<KeyValue>> point_params;    // every scenario parameter, effective value
   std::vector<std::string> specs;                     // references first, then algorithms
   int references = 0;                                 // how many leading specs are references
-  RunKind kind = RunKind::single_scan;                // from the scenario's registry
+  const ProblemKind* kind = nullptr;                  // the scenario's (harness/run/problem_kind.hpp)
   std::int64_t trials = 0;
   std::uint64_t seed = 0;
   int threads = 1;
@@ -49,7 +37,7 @@ struct RunPlan {
   long long items() const { return static_cast<long long>(point_params.size()) * trials; }
   // Work units per item (harness/run/work_queue.hpp): 1 for single scan, whose algorithms share the
   // reference's marginals; one per algorithm for the other kinds, whose algorithms are independent.
-  int parts() const { return kind == RunKind::single_scan ? 1 : static_cast<int>(specs.size()); }
+  int parts() const { return kind->shares_items() ? 1 : static_cast<int>(specs.size()); }
   // The items this process runs, in item order: all of them, or its shard's. Its item `local`
   // (0-based, < shard_items()) is the plan's item global_item(local).
   long long shard_items() const;
@@ -58,9 +46,7 @@ struct RunPlan {
   std::string shard_label() const;  // "K/N", or "" when not sharded
   const std::vector<std::string>& metric_columns() const;  // of trials.csv, by kind
   std::string trials_header() const;
-  // The per-item files of this kind, in the order the writer fills them (before trials.csv):
-  // multi-scan: targets.csv; tracking: tracks.csv, measurements.csv and, with
-  // `iterations = true`, iterations.csv; track-before-detect: steps.csv, estimates.csv, frames.csv.
+  // The per-item files of this kind, in the order the writer fills them (before trials.csv).
   std::vector<ItemFile> item_files() const;
   // The files a run of this plan writes: trials.csv, summary.csv, meta.json and item_files().
   std::vector<std::string> output_files() const;

@@ -18,7 +18,6 @@
 #include <optional>
 #include <set>
 #include <thread>
-#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -29,60 +28,18 @@
 #include "harness/core/progress.hpp"
 #include "harness/core/row_fields.hpp"
 #include "harness/core/summary.hpp"
-#include "harness/multi_scan/registry.hpp"
+#include "harness/run/execution.hpp"
 #include "harness/run/folder_lock.hpp"
 #include "harness/run/mpi_transport.hpp"
-#include "harness/run/multi_scan_execution.hpp"
 #include "harness/run/rank_messages.hpp"
 #include "harness/run/row_checksums.hpp"
 #include "harness/run/run_folder.hpp"
 #include "harness/run/run_meta.hpp"
 #include "harness/run/run_plan.hpp"
 #include "harness/run/schedule_simulation.hpp"
-#include "harness/run/single_scan_execution.hpp"
-#include "harness/run/tbd_execution.hpp"
-#include "harness/run/tracking_execution.hpp"
 #include "harness/run/work_queue.hpp"
-#include "harness/single_scan/marginal_errors.hpp"
-#include "harness/single_scan/registry.hpp"
-#include "harness/tbd/registry.hpp"
-#include "harness/tracking/registry.hpp"
 
 namespace dabench {
-
-const std::vector<std::string>& single_scan_metric_columns() {
-  static const std::vector<std::string> columns = {"n_targets", "n_measurements", "max_error", "mean_error",
-                                                   "time_us",   "iterations",     "converged", "w_star"};
-  return columns;
-}
-
-const std::vector<std::string>& multi_scan_metric_columns() {
-  static const std::vector<std::string> columns = {
-      "n_targets", "n_scans",    "n_measurements",    "mean_hpd", "max_hpd",       "mean_entropy",
-      "time_us",   "iterations", "converged",         "line_search_steps", "residual", "inner_residual"};
-  return columns;
-}
-
-const std::vector<std::string>& tracking_metric_columns() {
-  static const std::vector<std::string> columns = {
-      "nvt",          "tpd",          "nft",      "false_tracks", "ghost_tracks", "broken_targets", "ttl_scans",
-      "aee_range_km", "aee_bearing_mrad", "mospa_km", "tet_s",        "iterations",   "converged",      "free_energy"};
-  return columns;
-}
-
-const std::vector<std::string>& tracking_iteration_metric_columns() {
-  static const std::vector<std::string> columns = {"nvt",          "tpd",          "nft",          "false_tracks",
-                                                   "ghost_tracks", "broken_targets", "ttl_scans", "aee_range_km",
-                                                   "aee_bearing_mrad", "mospa_km", "free_energy"};
-  return columns;
-}
-
-const std::vector<std::string>& tbd_metric_columns() {
-  static const std::vector<std::string> columns = {"n_steps",   "gospa",     "gospa_p2",     "localisation",
-                                                   "missed",    "false",     "n_objects",    "n_estimates",
-                                                   "step_time_us", "iterations", "converged"};
-  return columns;
-}
 
 namespace {
 
@@ -125,7 +82,7 @@ std::vector<std::string> with_checksums(std::vector<std::string>&& texts, const 
 // Per unit of this process, its time in the run in `folder` (--costs-from), which must be of the
 // same points, trials and algorithms. InputError otherwise, or for a single-scan plan.
 std::vector<double> unit_predictions(const RunPlan& plan, const std::string& folder) {
-  if (plan.kind == RunKind::single_scan) {
+  if (plan.kind->shares_items()) {
     throw InputError("run: --costs-from orders the (item, algorithm) units of multi-scan, tracking and "
                      "track-before-detect runs; single-scan items run in order");
   }
@@ -159,7 +116,7 @@ WorkQueue make_work_queue(const RunPlan& plan, long long first_unit, long long w
   options.unit_predictions = std::move(predictions);
   options.parts = plan.parts();
   options.workers = workers;
-  options.order = plan.kind == RunKind::single_scan ? WorkOrder::in_order : WorkOrder::longest_first;
+  options.order = plan.kind->shares_items() ? WorkOrder::in_order : WorkOrder::longest_first;
   if (options.order == WorkOrder::longest_first) {
     options.points = static_cast<int>(plan.point_params.size());
     options.item_points.resize(static_cast<std::size_t>(plan.shard_items()));
@@ -200,48 +157,15 @@ std::string receive_polling(const MpiTransport& mpi, int source, int tag) {
   }
 }
 
-// The experiment's scenario from `registry`, created once per sweep point with its settings.
-template <class Registry>
-auto point_scenarios(const Registry& registry, const RunPlan& plan) {
-  const auto* entry = registry.find(plan.experiment.scenario);
-  std::vector<decltype(entry->create(plan.point_settings.front()))> scenarios;
-  for (const auto& settings : plan.point_settings) scenarios.push_back(entry->create(settings));
-  return scenarios;
-}
-
-// Builds the execution of the plan's kind and calls body(execution).
-template <class Body>
-double with_execution(const RunPlan& plan, Body&& body) {
-  if (plan.kind == RunKind::tracking) {
-    return body(TrackingExecution(plan, point_scenarios(tracking_scenario_registry(), plan),
-                                  make_options<TrackingMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
-  }
-  if (plan.kind == RunKind::tbd) {
-    return body(TbdExecution(plan, point_scenarios(tbd_scenario_registry(), plan),
-                             make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]")));
-  }
-  if (plan.kind == RunKind::multi_scan) {
-    return body(MultiScanExecution(plan, point_scenarios(multi_scan_scenario_registry(), plan)));
-  }
-  return body(SingleScanExecution(plan, point_scenarios(single_scan_scenario_registry(), plan)));
-}
-
 // Runs a chunk's units into worker.texts (cleared first) and their times into unit_seconds.
-template <class Execution, class Worker>
-void run_chunk(const Execution& execution, Worker& worker, const RunPlan& plan, WorkChunk chunk,
+void run_chunk(const RunExecution& execution, RunWorker& worker, const RunPlan& plan, WorkChunk chunk,
                std::vector<double>& unit_seconds) {
   for (std::string& text : worker.texts) text.clear();
   unit_seconds.clear();
   const long long parts = plan.parts();
   for (long long unit = chunk.begin; unit < chunk.end; ++unit) {
     const auto start = Clock::now();
-    const long long item = plan.global_item(unit / parts);
-    if constexpr (std::is_same_v<Execution, SingleScanExecution>) {
-      execution.run_item(worker, item);
-    } else {
-      const auto part = static_cast<std::size_t>(unit % parts);
-      execution.run_item(worker, item, part, part + 1);
-    }
+    execution.run_unit(worker, plan.global_item(unit / parts), static_cast<std::size_t>(unit % parts));
     unit_seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
   }
 }
@@ -249,8 +173,7 @@ void run_chunk(const Execution& execution, Worker& worker, const RunPlan& plan, 
 // Runs chunks from `queue` on this process's OpenMP threads (each with its own worker) and
 // hands each chunk's texts to the ordered writer; draws `progress` unless null and tells
 // `on_progress` unless empty (in items). Returns the threads' busy seconds.
-template <class Execution>
-double run_local_chunks(const Execution& execution, const RunPlan& plan, WorkQueue& queue, OrderedWriter& writer,
+double run_local_chunks(const RunExecution& execution, const RunPlan& plan, WorkQueue& queue, OrderedWriter& writer,
                         const std::vector<std::string>& names, std::atomic<long long>& units_finished, ProgressLine* progress,
                         const std::function<void(long long, long long)>& on_progress) {
   const long long parts = plan.parts();
@@ -258,7 +181,8 @@ double run_local_chunks(const Execution& execution, const RunPlan& plan, WorkQue
   double busy_seconds = 0.0;
 #pragma omp parallel num_threads(plan.threads) reduction(+ : busy_seconds)
   {
-    auto worker = execution.make_worker();
+    const std::unique_ptr<RunWorker> made = execution.make_worker();
+    RunWorker& worker = *made;
     const std::size_t files = worker.texts.size();
     std::vector<double> unit_seconds;
     while (const auto chunk = take_chunk(queue)) {
@@ -280,8 +204,7 @@ double run_local_chunks(const Execution& execution, const RunPlan& plan, WorkQue
 // to the next is there when it finishes a chunk), runs them and sends their rows and unit times
 // back with its next request, until rank 0 answers "none" (then every later answer is none too).
 // Threads call MPI one at a time (MPI_THREAD_SERIALIZED) and wait for answers by polling.
-template <class Execution>
-void serve_chunks(const Execution& execution, const RunPlan& plan, const MpiTransport& mpi) {
+void serve_chunks(const RunExecution& execution, const RunPlan& plan, const MpiTransport& mpi) {
 #pragma omp parallel num_threads(plan.threads)
   {
     if (omp_get_num_threads() != plan.threads) {  // rank 0 counts on plan.threads requesters
@@ -292,7 +215,8 @@ void serve_chunks(const Execution& execution, const RunPlan& plan, const MpiTran
         mpi.abort(1);
       }
     }
-    auto worker = execution.make_worker();
+    const std::unique_ptr<RunWorker> made = execution.make_worker();
+    RunWorker& worker = *made;
     const std::size_t files = worker.texts.size();
     const int tag = omp_get_thread_num();
     const auto send = [&](const ChunkResult& result) {
@@ -398,10 +322,7 @@ RunOutcome run_worker_rank(const RunOptions& options, const MpiTransport& mpi) {
   if (!start.error.empty()) throw InputError(start.error);
 
   const InterruptHandlers handlers;
-  with_execution(*plan, [&](const auto& execution) {
-    serve_chunks(execution, *plan, mpi);
-    return 0.0;
-  });
+  serve_chunks(*plan->kind->make_execution(*plan), *plan, mpi);
   RunOutcome outcome;
   outcome.items_total = plan->shard_items();
   outcome.output = plan->output;
@@ -533,7 +454,9 @@ RunOutcome run_experiment(const RunOptions& options) {
   const InterruptHandlers handlers;
   const auto wall_start = Clock::now();
   std::atomic<long long> units_finished{first_unit};
-  const double busy_seconds = with_execution(plan, [&](const auto& execution) {
+  const std::unique_ptr<RunExecution> execution_made = plan.kind->make_execution(plan);
+  const RunExecution& execution = *execution_made;
+  const double busy_seconds = [&] {
     if (mpi == nullptr) {
       return run_local_chunks(execution, plan, queue, writer, opened.names, units_finished, &progress, options.on_progress);
     }
@@ -555,7 +478,7 @@ RunOutcome run_experiment(const RunOptions& options) {
     }
     local.join();
     return local_busy + remote_busy;
-  });
+  }();
   progress.finish();
   const double wall_seconds = std::chrono::duration<double>(Clock::now() - wall_start).count();
   for (std::FILE* file : files) std::fclose(file);

@@ -72,15 +72,4 @@ RunOutcome run_experiment(const RunOptions& options);
 // for a caller that runs run_experiment on another thread. No effect when no run is in progress.
 void interrupt_run();
 
-// Column names of the metrics in trials.csv, in order, for single-scan, multi-scan and
-// tracking runs.
-const std::vector<std::string>& single_scan_metric_columns();
-const std::vector<std::string>& multi_scan_metric_columns();
-const std::vector<std::string>& tracking_metric_columns();
-// Of iterations.csv (tracking runs with `iterations = true`): tracking_metric_columns() up to
-// mospa_km, then free_energy (the recorded track set's objective).
-const std::vector<std::string>& tracking_iteration_metric_columns();
-// Of trials.csv for track-before-detect runs (harness/run/tbd_execution.hpp).
-const std::vector<std::string>& tbd_metric_columns();
-
 }  // namespace dabench

@@ -22,7 +22,7 @@ def write_run(folder, pairs, fingerprint="f00d", seed=7):
             rows.append(f"{point},{point / 2},{trial},{seed},a,ok,{x!r},1\n")
             rows.append(f"{point},{point / 2},{trial},{seed},\"b:k=1,m=2\",ok,{y!r},2\n")
     (folder / "trials.csv").write_text("".join(rows))
-    (folder / "meta.json").write_text(json.dumps({"fingerprint": fingerprint, "seed": seed}))
+    (folder / "meta.json").write_text(json.dumps({"scenario": "grid", "fingerprint": fingerprint, "seed": seed}))
     return folder
 
 

@@ -34,7 +34,7 @@ std::string write_run(const TempDir& dir, const std::string& name, const std::ve
     }
   }
   dir.write(name + "/trials.csv", rows);
-  dir.write(name + "/meta.json", "{\"fingerprint\": \"" + fingerprint + "\", \"seed\": 7}\n");
+  dir.write(name + "/meta.json", "{\"scenario\": \"grid\", \"fingerprint\": \"" + fingerprint + "\", \"seed\": 7}\n");
   return (dir.work() / name).string();
 }
 
@@ -112,6 +112,14 @@ TEST_CASE("paired comparison: compare_runs pairs trials by point, in one run or 
   CHECK(one.rows[0].stats.a_better == Approx(3.0 / 5).epsilon(1e-14));
   CHECK(one.rows[1].point_fields == "1,1");
   CHECK(one.rows[1].stats.ties == Approx(1.0 / 3).epsilon(1e-14));
+
+  // Without --metric: the kind's error and time columns (meta.json's scenario is single-scan).
+  options.metrics.clear();
+  const Comparison defaults = compare_runs(options);
+  REQUIRE(defaults.rows.size() == 4);
+  CHECK(defaults.rows[0].metric == "max_error");  // metric by metric, each over the points
+  CHECK(defaults.rows[2].metric == "time_us");
+  options.metrics = {"max_error"};
 
   // Two runs of one plan: algorithm a in each; the differences are run A's minus run B's.
   const std::string other = write_run(dir, "other", b, a);

@@ -1,4 +1,4 @@
-// `dabench run` for tracking experiments (harness/run/tracking_execution.hpp), through the C++ API
+// `dabench run` for tracking experiments (harness/run/kinds/tracking_execution.hpp), through the C++ API
 // (run_experiment): the trackers and one scenario here are test-only and registered in the
 // test binary alone, so no test depends on jdt-vb or mptf existing.
 //  - a constructed case (scenario test-static-target: one still target, one measurement per

@@ -2,7 +2,7 @@
 // One (point, trial) work item of a track-before-detect run (tbd-bp-supplement): draw the run
 // from the item's own stream, run every tracker on that same draw frame by frame (each step()
 // timed on the steady clock), score each step (harness/tbd/metrics.hpp) and format its rows of
-//  - trials.csv: one per tracker, the columns of tbd_metric_columns(): n_steps, and the means
+//  - trials.csv: one per tracker, the metric columns of kinds/tbd.cpp: n_steps, and the means
 //    over the run's steps of gospa, gospa_p2, localisation, missed, false, n_objects, n_estimates
 //    and step_time_us, then iterations (summed over steps) and converged (every step's);
 //  - steps.csv: one per tracker and step k = 1..K (the paper's numbering): n_objects,
@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/run/execution.hpp"
 #include "harness/run/run_plan.hpp"
 #include "harness/tbd/metrics.hpp"
 #include "harness/tbd/scenario.hpp"
@@ -28,7 +29,7 @@
 
 namespace dabench {
 
-struct TbdWorker {
+struct TbdWorker final : RunWorker {
   std::vector<std::unique_ptr<TbdTracker>> trackers;
   std::vector<SolveReport> reports;
   std::vector<std::vector<TbdStepMetrics>> steps;               // per tracker, per step
@@ -38,15 +39,14 @@ struct TbdWorker {
   std::unique_ptr<TbdScorer> scorer;
   TbdSample sample;
   std::vector<TbdBeliefSample> belief_samples;
-  std::vector<std::string> texts;  // rows for {steps.csv, estimates.csv, frames.csv, [beliefs.csv,] trials.csv}
-  double busy_seconds = 0.0;
 };
 
-class TbdExecution {
+class TbdExecution final : public RunExecution {
  public:
   TbdExecution(const RunPlan& plan, std::vector<std::unique_ptr<TbdScenario>> scenarios,
                const TbdMetricsOptions& metrics);
-  TbdWorker make_worker() const;
+  std::unique_ptr<RunWorker> make_worker() const override;
+  void run_unit(RunWorker& worker, long long item, std::size_t part) const override;
   // Runs trackers [first_algorithm, end_algorithm) of the plan on the item's draw: their rows, and
   // with the first tracker the item's own rows (truth estimates, frames).
   void run_item(TbdWorker& worker, long long item, std::size_t first_algorithm, std::size_t end_algorithm) const;

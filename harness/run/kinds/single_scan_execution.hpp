@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/run/execution.hpp"
 #include "harness/run/run_plan.hpp"
 #include "harness/single_scan/scenario.hpp"
 #include "harness/single_scan/solver.hpp"
@@ -15,20 +16,19 @@
 namespace dabench {
 
 // One thread's solvers and buffers, reused for every item it runs.
-struct SingleScanWorker {
+struct SingleScanWorker final : RunWorker {
   std::vector<std::unique_ptr<SingleScanSolver>> solvers;
   std::vector<MarginalTable> marginals;
   std::vector<SolveReport> reports;
   std::vector<double> time_us;
   ScenarioSample sample;
-  std::vector<std::string> texts;  // rows for {trials.csv}
-  double busy_seconds = 0.0;
 };
 
-class SingleScanExecution {
+class SingleScanExecution final : public RunExecution {
  public:
   SingleScanExecution(const RunPlan& plan, std::vector<std::unique_ptr<SingleScanScenario>> scenarios);
-  SingleScanWorker make_worker() const;
+  std::unique_ptr<RunWorker> make_worker() const override;
+  void run_unit(RunWorker& worker, long long item, std::size_t part) const override;
   void run_item(SingleScanWorker& worker, long long item) const;
 
  private:

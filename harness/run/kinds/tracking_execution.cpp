@@ -1,5 +1,5 @@
 #include "harness/core/special_values.hpp"
-#include "harness/run/tracking_execution.hpp"
+#include "harness/run/kinds/tracking_execution.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -78,8 +78,9 @@ TrackingExecution::TrackingExecution(const RunPlan& plan, std::vector<std::uniqu
   if (const std::string why = metrics_.validate(); !why.empty()) throw InputError("[metrics]: " + why);
 }
 
-TrackingWorker TrackingExecution::make_worker() const {
-  TrackingWorker worker;
+std::unique_ptr<RunWorker> TrackingExecution::make_worker() const {
+  auto made = std::make_unique<TrackingWorker>();
+  TrackingWorker& worker = *made;
   for (const std::string& spec : plan_.specs) worker.trackers.push_back(make_tracker(spec));
   worker.tracks.resize(plan_.specs.size());
   worker.reports.resize(plan_.specs.size());
@@ -89,8 +90,12 @@ TrackingWorker TrackingExecution::make_worker() const {
     worker.histories.resize(plan_.specs.size());
     worker.iteration_metrics.resize(plan_.specs.size());
   }
-  worker.texts.resize(record_iterations_ ? 4 : 3);
-  return worker;
+  worker.texts.resize(record_iterations_ ? 4 : 3);  // tracks, measurements, [iterations,] trials.csv
+  return made;
+}
+
+void TrackingExecution::run_unit(RunWorker& worker, long long item, std::size_t part) const {
+  run_item(static_cast<TrackingWorker&>(worker), item, part, part + 1);
 }
 
 void TrackingExecution::score_history(TrackingWorker& worker, std::size_t a, const TrackingTruth& scored,

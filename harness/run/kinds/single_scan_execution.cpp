@@ -1,4 +1,4 @@
-#include "harness/run/single_scan_execution.hpp"
+#include "harness/run/kinds/single_scan_execution.hpp"
 
 #include <chrono>
 #include <exception>
@@ -24,14 +24,20 @@ SingleScanExecution::SingleScanExecution(const RunPlan& plan, std::vector<std::u
       point_prefix_(plan.point_row_prefixes()),
       spec_field_(plan.spec_fields()) {}
 
-SingleScanWorker SingleScanExecution::make_worker() const {
-  SingleScanWorker worker;
+std::unique_ptr<RunWorker> SingleScanExecution::make_worker() const {
+  auto made = std::make_unique<SingleScanWorker>();
+  SingleScanWorker& worker = *made;
   for (const std::string& spec : plan_.specs) worker.solvers.push_back(make_single_scan_solver(spec));
   worker.marginals.resize(plan_.specs.size());
   worker.reports.resize(plan_.specs.size());
   worker.time_us.resize(plan_.specs.size());
-  worker.texts.resize(1);
-  return worker;
+  worker.texts.resize(1);  // trials.csv
+  return made;
+}
+
+void SingleScanExecution::run_unit(RunWorker& worker, long long item, std::size_t part) const {
+  static_cast<void>(part);  // one unit per item: every algorithm
+  run_item(static_cast<SingleScanWorker&>(worker), item);
 }
 
 void SingleScanExecution::run_item(SingleScanWorker& worker, long long item) const {

@@ -1,4 +1,4 @@
-#include "harness/run/multi_scan_execution.hpp"
+#include "harness/run/kinds/multi_scan_execution.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -41,14 +41,19 @@ MultiScanExecution::MultiScanExecution(const RunPlan& plan, std::vector<std::uni
       point_prefix_(plan.point_row_prefixes()),
       spec_field_(plan.spec_fields()) {}
 
-MultiScanWorker MultiScanExecution::make_worker() const {
-  MultiScanWorker worker;
+std::unique_ptr<RunWorker> MultiScanExecution::make_worker() const {
+  auto made = std::make_unique<MultiScanWorker>();
+  MultiScanWorker& worker = *made;
   for (const std::string& spec : plan_.specs) worker.solvers.push_back(make_multi_scan_solver(spec));
   worker.beliefs.resize(plan_.specs.size());
   worker.reports.resize(plan_.specs.size());
   worker.time_us.resize(plan_.specs.size());
-  worker.texts.resize(2);
-  return worker;
+  worker.texts.resize(2);  // targets.csv, trials.csv
+  return made;
+}
+
+void MultiScanExecution::run_unit(RunWorker& worker, long long item, std::size_t part) const {
+  run_item(static_cast<MultiScanWorker&>(worker), item, part, part + 1);
 }
 
 void MultiScanExecution::run_item(MultiScanWorker& worker, long long item, std::size_t first_algorithm,

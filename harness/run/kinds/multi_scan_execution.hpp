@@ -13,24 +13,24 @@
 
 #include "harness/multi_scan/scenario.hpp"
 #include "harness/multi_scan/solver.hpp"
+#include "harness/run/execution.hpp"
 #include "harness/run/run_plan.hpp"
 
 namespace dabench {
 
-struct MultiScanWorker {
+struct MultiScanWorker final : RunWorker {
   std::vector<std::unique_ptr<MultiScanSolver>> solvers;
   std::vector<MultiScanBeliefs> beliefs;
   std::vector<SolveReport> reports;
   std::vector<double> time_us;
   MultiScanSample sample;
-  std::vector<std::string> texts;  // rows for {targets.csv, trials.csv}
-  double busy_seconds = 0.0;
 };
 
-class MultiScanExecution {
+class MultiScanExecution final : public RunExecution {
  public:
   MultiScanExecution(const RunPlan& plan, std::vector<std::unique_ptr<MultiScanScenario>> scenarios);
-  MultiScanWorker make_worker() const;
+  std::unique_ptr<RunWorker> make_worker() const override;
+  void run_unit(RunWorker& worker, long long item, std::size_t part) const override;
   // Runs algorithms [first_algorithm, end_algorithm) of the plan on the item's draw: their rows.
   void run_item(MultiScanWorker& worker, long long item, std::size_t first_algorithm, std::size_t end_algorithm) const;
 

@@ -1,5 +1,5 @@
 #include "harness/core/special_values.hpp"
-#include "harness/run/tbd_execution.hpp"
+#include "harness/run/kinds/tbd_execution.hpp"
 
 #include <chrono>
 
@@ -43,8 +43,9 @@ TbdExecution::TbdExecution(const RunPlan& plan, std::vector<std::unique_ptr<TbdS
       point_prefix_(plan.point_row_prefixes()),
       spec_field_(plan.spec_fields()) {}
 
-TbdWorker TbdExecution::make_worker() const {
-  TbdWorker worker;
+std::unique_ptr<RunWorker> TbdExecution::make_worker() const {
+  auto made = std::make_unique<TbdWorker>();
+  TbdWorker& worker = *made;
   for (const std::string& spec : plan_.specs) worker.trackers.push_back(make_tbd_tracker(spec));
   const std::size_t count = plan_.specs.size();
   worker.reports.resize(count);
@@ -52,8 +53,12 @@ TbdWorker TbdExecution::make_worker() const {
   worker.step_seconds.resize(count);
   worker.reported.resize(count);
   worker.scorer = std::make_unique<TbdScorer>(metrics_);
-  worker.texts.resize(plan_.experiment.record_beliefs ? 5 : 4);
-  return worker;
+  worker.texts.resize(plan_.experiment.record_beliefs ? 5 : 4);  // steps, estimates, frames, [beliefs,] trials.csv
+  return made;
+}
+
+void TbdExecution::run_unit(RunWorker& worker, long long item, std::size_t part) const {
+  run_item(static_cast<TbdWorker&>(worker), item, part, part + 1);
 }
 
 void TbdExecution::run_tracker(TbdWorker& worker, std::size_t a, bool keep_estimates) const {

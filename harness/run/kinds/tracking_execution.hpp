@@ -3,7 +3,7 @@
 // scenario run from the item's own stream, run every tracker on that same draw (each call
 // timed on the steady clock: TET), score it against the truth (harness/tracking/metrics.hpp)
 // and format its rows of
-//  - trials.csv: one per tracker, the metric columns of tracking_metric_columns(): nvt, tpd,
+//  - trials.csv: one per tracker, the metric columns of kinds/tracking.cpp: nvt, tpd,
 //    nft, false_tracks, ghost_tracks, broken_targets, ttl_scans, aee_range_km,
 //    aee_bearing_mrad, mospa_km (empty unless the tracker ran), tet_s (seconds), iterations,
 //    converged, free_energy (from the SolveReport, empty unless the tracker ran; free_energy
@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/run/execution.hpp"
 #include "harness/run/run_plan.hpp"
 #include "harness/tracking/metrics.hpp"
 #include "harness/tracking/scenario.hpp"
@@ -44,7 +45,7 @@
 
 namespace dabench {
 
-struct TrackingWorker {
+struct TrackingWorker final : RunWorker {
   std::vector<std::unique_ptr<Tracker>> trackers;
   std::vector<TrackSet> tracks;
   std::vector<SolveReport> reports;
@@ -53,16 +54,14 @@ struct TrackingWorker {
   std::vector<std::vector<TrackSet>> histories;                // per tracker, when recording
   std::vector<std::vector<TrackingMetrics>> iteration_metrics;  // per tracker, per recorded r
   TrackingScenarioSample sample;
-  // rows for {tracks.csv, measurements.csv, [iterations.csv,] trials.csv}
-  std::vector<std::string> texts;
-  double busy_seconds = 0.0;
 };
 
-class TrackingExecution {
+class TrackingExecution final : public RunExecution {
  public:
   TrackingExecution(const RunPlan& plan, std::vector<std::unique_ptr<TrackingScenario>> scenarios,
                     const TrackingMetricsOptions& metrics);
-  TrackingWorker make_worker() const;
+  std::unique_ptr<RunWorker> make_worker() const override;
+  void run_unit(RunWorker& worker, long long item, std::size_t part) const override;
   // Runs trackers [first_algorithm, end_algorithm) of the plan on the item's draw: their rows, and
   // with the first tracker the item's own rows (truth tracks, measurements).
   void run_item(TrackingWorker& worker, long long item, std::size_t first_algorithm, std::size_t end_algorithm) const;
