@@ -17,6 +17,7 @@
 
 #include "harness/core/csv.hpp"
 #include "harness/core/errors.hpp"
+#include "harness/core/special_values.hpp"
 #include "harness/core/input_file.hpp"
 #include "harness/core/json.hpp"
 #include "harness/run/problem_kind.hpp"
@@ -25,7 +26,6 @@
 namespace dabench {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t kExactLimit = 50;  // scipy's: the exact distribution up to 50 differences
 constexpr std::uintmax_t kMaxTrialsBytes = std::uintmax_t{4} << 30;
 
