@@ -7,21 +7,14 @@ const ProblemKind& multi_scan_kind();
 const ProblemKind& tracking_kind();
 const ProblemKind& tbd_kind();
 
-namespace {
-
-std::vector<const ProblemKind*>& kind_list() {
-  static std::vector<const ProblemKind*> kinds = {&single_scan_kind(), &multi_scan_kind(), &tracking_kind(), &tbd_kind()};
+const std::vector<const ProblemKind*>& problem_kinds() {
+  static const std::vector<const ProblemKind*> kinds = {&single_scan_kind(), &multi_scan_kind(), &tracking_kind(),
+                                                        &tbd_kind()};
   return kinds;
 }
 
-}  // namespace
-
-const std::vector<const ProblemKind*>& problem_kinds() { return kind_list(); }
-
-void register_problem_kind(const ProblemKind& kind) { kind_list().push_back(&kind); }
-
 const ProblemKind* kind_of_scenario(const std::string& scenario) {
-  for (const ProblemKind* kind : kind_list()) {
+  for (const ProblemKind* kind : problem_kinds()) {
     if (kind->has_scenario(scenario)) return kind;
   }
   return nullptr;

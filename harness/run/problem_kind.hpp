@@ -3,9 +3,9 @@
 // and any kind added later): its scenarios and algorithms, the checks of an experiment on it,
 // its trials.csv columns and per-item files, what meta.json adds, and its execution. One
 // descriptor per kind lives in harness/run/kinds/<kind>.cpp beside its execution
-// (<kind>_execution.{hpp,cpp}, which writes the rows of those files); the planner, the runner
-// and meta.json loop over problem_kinds() and switch on nothing. A kind outside this folder (a
-// test's) is added with register_problem_kind.
+// (<kind>_execution.{hpp,cpp}, which writes the rows of those files); the planner, the runner,
+// meta.json, compare's defaults, `dabench list` and the Python catalogue loop over
+// problem_kinds() and switch on nothing.
 #include <memory>
 #include <string>
 #include <string_view>
@@ -87,10 +87,8 @@ class ProblemKind {
   virtual std::unique_ptr<RunExecution> make_execution(const RunPlan& plan) const = 0;
 };
 
-// The built-in kinds (single scan, multi-scan, tracking, track-before-detect), then those
-// registered, in registration order.
+// Every kind: single scan, multi-scan, tracking, track-before-detect.
 const std::vector<const ProblemKind*>& problem_kinds();
-void register_problem_kind(const ProblemKind& kind);
 // The kind whose registry holds `scenario`, or null.
 const ProblemKind* kind_of_scenario(const std::string& scenario);
 // The built-in kind of single-scan problems (the Python package draws them).
