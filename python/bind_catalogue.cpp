@@ -1,4 +1,5 @@
-// dabench.algorithms() and dabench.scenarios(): what `dabench list` prints, as data.
+// dabench.algorithms() and dabench.scenarios(): what `dabench list` prints, as data; and
+// dabench.kinds(): each problem kind's trials.csv columns and its primary error and time columns.
 #include <string>
 #include <variant>
 
@@ -62,11 +63,29 @@ py::list scenarios(const std::string& kind) {
   return out;
 }
 
+py::list kinds() {
+  py::list out;
+  for (const ProblemKind* kind : problem_kinds()) {
+    const AlgorithmTimeColumn time = kind->time_column();
+    py::dict row;
+    row["kind"] = std::string(kind->key());
+    row["name"] = std::string(kind->name());
+    row["columns"] = kind->metric_columns();
+    row["error"] = std::string(kind->error_column());
+    row["time"] = std::string(time.column);
+    row["time_to_seconds"] = time.to_seconds;
+    row["time_count"] = time.count_column.empty() ? py::object(py::none()) : py::str(std::string(time.count_column));
+    out.append(row);
+  }
+  return out;
+}
+
 }  // namespace
 
 void bind_catalogue(py::module_& module) {
   module.def("algorithms", &algorithms, py::arg("kind") = "");
   module.def("scenarios", &scenarios, py::arg("kind") = "");
+  module.def("kinds", &kinds);
 }
 
 }  // namespace dabench::python

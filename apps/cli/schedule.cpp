@@ -45,7 +45,7 @@ int run_schedule(const Invocation& invocation) {
   const std::vector<long long> workers = parse_workers(workers_text);
   if (parsed->count("trials") && trials < 1) throw InputError(fmt::format("schedule: --trials {} must be >= 1", trials));
   require_complete_run(folder, "schedule");
-  const RunCosts costs = read_run_costs(folder, trials);
+  const RunCosts costs = read_run_costs(folder, "schedule", trials);
   const double total = std::accumulate(costs.unit_seconds.begin(), costs.unit_seconds.end(), 0.0);
   const double longest = *std::max_element(costs.unit_seconds.begin(), costs.unit_seconds.end());
   std::string out;
@@ -84,9 +84,10 @@ const Command kScheduleCommand{
     "schedule", "dabench schedule RUN_DIR [--workers 1,2,16,64,256] [--trials N] [--format table|csv]",
     "Predicts the wall time of a finished run's work on W workers (threads of all ranks), simulated\n"
     "over the run's own per-unit times: the runner's work queue, the 8-item blocks it replaced, and\n"
-    "the queue of a rerun with --costs-from. The times come from trials.csv (or a track-before-detect\n"
-    "report's runs.csv, or summary.csv's means per point and algorithm) and are the algorithms'\n"
-    "alone: drawing, metrics and writing come on top. With --trials N: the first N trials of each point.\n",
+    "the queue of a rerun with --costs-from. The times are those of the time column of the run's kind\n"
+    "(meta.json's scenario says which) in trials.csv (or a track-before-detect report's runs.csv, or\n"
+    "summary.csv's means per point and algorithm), the algorithms' alone: drawing, metrics and\n"
+    "writing come on top. With --trials N: the first N trials of each point.\n",
     run_schedule};
 
 }  // namespace dabench::cli

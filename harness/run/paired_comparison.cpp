@@ -300,17 +300,6 @@ std::string meta_field(const std::string& folder, const char* key) {
   return *value;
 }
 
-// The metrics compared when none is named: those of the run's problem kind (meta.json's scenario).
-std::vector<std::string> default_metrics(const std::string& folder) {
-  const std::string scenario = meta_field(folder, "scenario");
-  const ProblemKind* kind = kind_of_scenario(scenario);
-  if (kind == nullptr) {
-    throw InputError(fmt::format("compare: {}: scenario '{}' is of no problem kind this build knows: name the metric "
-                                 "columns (--metric)", folder, scenario));
-  }
-  return kind->compared_metrics();
-}
-
 }  // namespace
 
 Comparison compare_runs(const CompareOptions& options) {
@@ -322,7 +311,8 @@ Comparison compare_runs(const CompareOptions& options) {
   require_complete_run(options.run_a, "compare");
   if (two_runs) require_complete_run(options.run_b, "compare");
   static_cast<void>(trials_file(options.run_a));  // before meta.json: a folder that is no run says so
-  const std::vector<std::string> metrics = options.metrics.empty() ? default_metrics(options.run_a) : options.metrics;
+  const std::vector<std::string> metrics =
+      options.metrics.empty() ? recorded_kind(options.run_a, "compare").compared_metrics() : options.metrics;
   Comparison comparison;
   PointStream a(options.run_a, options.algorithms, metrics);
   std::optional<PointStream> b;

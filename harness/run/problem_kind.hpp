@@ -1,11 +1,12 @@
 #pragma once
 // What a problem kind is to the runner (single scan, multi-scan, tracking, track-before-detect,
 // and any kind added later): its scenarios and algorithms, the checks of an experiment on it,
-// its trials.csv columns and per-item files, what meta.json adds, and its execution. One
-// descriptor per kind lives in harness/run/kinds/<kind>.cpp beside its execution
-// (<kind>_execution.{hpp,cpp}, which writes the rows of those files); the planner, the runner,
-// meta.json, compare's defaults, `dabench list` and the Python catalogue loop over
-// problem_kinds() and switch on nothing.
+// its trials.csv columns and per-item files, its primary error and time columns, what meta.json
+// adds, and its execution. One descriptor per built-in kind lives in harness/run/kinds/<kind>.cpp
+// beside its execution (<kind>_execution.{hpp,cpp}, which writes the rows of those files); a
+// program's own kind registers with DABENCH_REGISTER_PROBLEM_KIND (README "Adding a kind"). The
+// planner, the runner, merge, meta.json, compare's defaults, schedule, `dabench list` and the
+// Python catalogue loop over problem_kinds() and switch on nothing.
 #include <memory>
 #include <string>
 #include <string_view>
@@ -25,6 +26,14 @@ struct RunPlan;
 struct ItemFile {
   std::string name;    // e.g. "targets.csv"
   std::string header;  // with its newline
+};
+
+// Where trials.csv keeps a row's algorithm time: `column` × `to_seconds`, times the row's
+// `count_column` where one is named (track-before-detect: step_time_us × n_steps × 1e-6).
+struct AlgorithmTimeColumn {
+  std::string_view column;
+  double to_seconds = 1.0;
+  std::string_view count_column = {};
 };
 
 // One algorithm or scenario of a kind's registries, as the catalogues show it.
@@ -76,8 +85,14 @@ class ProblemKind {
     static_cast<void>(experiment);
     return {};
   }
-  // What `dabench compare` compares when no --metric is given: the kind's error and time columns.
-  virtual std::vector<std::string> compared_metrics() const = 0;
+  // The kind's primary columns: its error (trials.csv's, e.g. max_error) and its algorithm time.
+  // `dabench compare` compares both when no --metric is given; `dabench schedule` and
+  // `run --costs-from` read the time as a unit's cost.
+  virtual std::string_view error_column() const = 0;
+  virtual AlgorithmTimeColumn time_column() const = 0;
+  std::vector<std::string> compared_metrics() const {
+    return {std::string(error_column()), std::string(time_column().column)};
+  }
   virtual void add_meta(const Experiment& experiment, JsonObject& meta) const {
     static_cast<void>(experiment);
     static_cast<void>(meta);
@@ -87,11 +102,28 @@ class ProblemKind {
   virtual std::unique_ptr<RunExecution> make_execution(const RunPlan& plan) const = 0;
 };
 
-// Every kind: single scan, multi-scan, tracking, track-before-detect.
+// Every kind: single scan, multi-scan, tracking, track-before-detect, then those registered.
 const std::vector<const ProblemKind*>& problem_kinds();
+// Adds a kind defined outside harness/run/kinds (a program's own, e.g. the example kind of
+// tests/support/example_kind.cpp), before main(), by DABENCH_REGISTER_PROBLEM_KIND(KindClass).
+// Its name and key must be new (a clash ends the program with a message), its scenario names too
+// (kind_of_scenario throws std::logic_error on a name two kinds hold).
+void register_problem_kind(const ProblemKind& kind);
 // The kind whose registry holds `scenario`, or null.
 const ProblemKind* kind_of_scenario(const std::string& scenario);
 // The built-in kind of single-scan problems (the Python package draws them).
 const ProblemKind& single_scan_kind();
 
+template <class Kind>
+struct ProblemKindRegistration {
+  ProblemKindRegistration() {
+    static const Kind kind;
+    register_problem_kind(kind);
+  }
+};
+
 }  // namespace dabench
+
+// At namespace scope in the kind's own source file, after the class.
+#define DABENCH_REGISTER_PROBLEM_KIND(Kind) \
+  static const ::dabench::ProblemKindRegistration<Kind> dabench_problem_kind_registration_##Kind {}

@@ -25,6 +25,21 @@ void require_complete_run(const std::string& folder, std::string_view command) {
                                "first", command, folder, *status == "running" ? "still running, or was killed" : *status));
 }
 
+const ProblemKind& recorded_kind(const std::string& folder, std::string_view command) {
+  const std::string path = (std::filesystem::path(folder) / "meta.json").string();
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) {
+    throw InputError(fmt::format("{}: {}: meta.json is missing (its scenario says the run's kind)", command, folder));
+  }
+  const auto scenario = json_value(read_input_file(path, "run meta.json", kMaxMetaBytes), "scenario");
+  if (!scenario) throw InputError(fmt::format("{}: {}: no \"scenario\" (the run's kind)", command, path));
+  const ProblemKind* kind = kind_of_scenario(*scenario);
+  if (kind == nullptr) {
+    throw InputError(fmt::format("{}: {}: scenario '{}' is of no problem kind this build knows", command, folder, *scenario));
+  }
+  return *kind;
+}
+
 std::string utc_now() {
   const std::time_t now = std::time(nullptr);
   std::tm parts{};

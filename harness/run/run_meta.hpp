@@ -52,6 +52,11 @@ std::string run_meta_json(const RunPlan& plan, const RunRecord& record);
 // was killed or interrupted, whose numbers would silently cover only some trials.
 void require_complete_run(const std::string& folder, std::string_view command);
 
+// The problem kind of the run in FOLDER: the kind whose registry holds meta.json's scenario.
+// InputError of one line, naming `command`, for a folder without meta.json or a scenario this
+// build does not know.
+const ProblemKind& recorded_kind(const std::string& folder, std::string_view command);
+
 std::string utc_now();
 std::string host_name();
 

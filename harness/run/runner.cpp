@@ -80,14 +80,18 @@ std::vector<std::string> with_checksums(std::vector<std::string>&& texts, const 
 }
 
 // Per unit of this process, its time in the run in `folder` (--costs-from), which must be of the
-// same points, trials and algorithms. InputError otherwise, or for a single-scan plan.
+// same kind, points, trials and algorithms. InputError otherwise, or for a kind whose algorithms
+// share an item (single scan).
 std::vector<double> unit_predictions(const RunPlan& plan, const std::string& folder) {
   if (plan.kind->shares_items()) {
-    throw InputError("run: --costs-from orders the (item, algorithm) units of multi-scan, tracking and "
-                     "track-before-detect runs; single-scan items run in order");
+    throw InputError(fmt::format("run: --costs-from orders (item, algorithm) units longest first; {} items run in "
+                                 "order (their algorithms share the item)", plan.kind->name()));
   }
   require_complete_run(folder, "run --costs-from");
-  const RunCosts costs = read_run_costs(folder);
+  const RunCosts costs = read_run_costs(folder, "run --costs-from");
+  if (costs.kind != plan.kind) {
+    throw InputError(fmt::format("run: --costs-from {}: a {} run; this one is {}", folder, costs.kind->name(), plan.kind->name()));
+  }
   if (costs.from_means || costs.items() != plan.items() || costs.parts != plan.parts()) {
     throw InputError(fmt::format("run: --costs-from {}: {} holds {} items of {} algorithms{}, this run {} of {}", folder,
                                  costs.source, costs.items(), costs.parts, costs.from_means ? " (means only)" : "",

@@ -15,38 +15,40 @@
 #include "harness/core/csv.hpp"
 #include "harness/core/errors.hpp"
 #include "harness/core/input_file.hpp"
+#include "harness/run/run_meta.hpp"
 
 namespace dabench {
 namespace {
 
 constexpr std::uintmax_t kMaxCostFileBytes = std::uintmax_t{4} << 30;
 
-// The columns that hold a row's time, in seconds, by the file's header.
+// The columns of a row's (point, trial) and its algorithm time (the kind's time column; in
+// summary.csv, its mean, and the trial count standing for the trial).
 struct TimeColumns {
-  int point = -1, trial = -1, trials = -1;  // trials: summary.csv's trial count per row
-  int time_us = -1, tet_s = -1, step_time_us = -1, n_steps = -1;
-  bool single_scan = false;  // max_error: measured against a reference
+  int point = -1, trial = -1;
+  int time = -1, count = -1;  // count: the kind's count column, or -1
+  double to_seconds = 1.0;
 };
 
-TimeColumns time_columns(const std::vector<std::string>& header, const std::string& path) {
+TimeColumns time_columns(const std::vector<std::string>& header, const ProblemKind& kind, bool summary,
+                         const std::string& path) {
+  const AlgorithmTimeColumn time = kind.time_column();
+  const std::string suffix = summary ? "_mean" : "";
+  const std::string time_name = std::string(time.column) + suffix;
+  const std::string count_name = time.count_column.empty() ? "" : std::string(time.count_column) + suffix;
   TimeColumns columns;
+  columns.to_seconds = time.to_seconds;
   for (std::size_t c = 0; c < header.size(); ++c) {
     const std::string& name = header[c];
     const int index = static_cast<int>(c);
     if (name == "point" && columns.point < 0) columns.point = index;
-    if (name == "trial") columns.trial = index;
-    if (name == "trials") columns.trials = index;
-    // Per-trial files name the times; summary.csv their means.
-    if (name == "time_us" || name == "time_us_mean") columns.time_us = index;
-    if (name == "tet_s" || name == "tet_s_mean") columns.tet_s = index;
-    if (name == "step_time_us" || name == "step_time_us_mean") columns.step_time_us = index;
-    if (name == "n_steps" || name == "n_steps_mean") columns.n_steps = index;
-    if (name == "max_error" || name == "max_error_mean") columns.single_scan = true;
+    if (name == (summary ? "trials" : "trial")) columns.trial = index;
+    if (name == time_name) columns.time = index;
+    if (!count_name.empty() && name == count_name) columns.count = index;
   }
-  if (columns.trial < 0 && columns.trials >= 0) columns.trial = columns.trials;  // summary: a row stands for its trials
-  const bool timed = columns.tet_s >= 0 || (columns.step_time_us >= 0 && columns.n_steps >= 0) || columns.time_us >= 0;
-  if (columns.point < 0 || columns.trial < 0 || !timed) {
-    throw InputError(fmt::format("{}: no point, trial and time columns (time_us, tet_s, or step_time_us and n_steps)", path));
+  if (columns.point < 0 || columns.trial < 0 || columns.time < 0 || (!count_name.empty() && columns.count < 0)) {
+    throw InputError(fmt::format("{}: no point, {} and {}{} columns (a {} run's)", path, summary ? "trials" : "trial",
+                                 time_name, count_name.empty() ? "" : " and " + count_name, kind.name()));
   }
   return columns;
 }
@@ -59,11 +61,8 @@ double field_number(const std::vector<std::string>& fields, int column) {
 }
 
 double row_seconds(const std::vector<std::string>& fields, const TimeColumns& columns) {
-  if (columns.tet_s >= 0) return field_number(fields, columns.tet_s);
-  if (columns.step_time_us >= 0 && columns.n_steps >= 0) {
-    return 1e-6 * field_number(fields, columns.step_time_us) * field_number(fields, columns.n_steps);
-  }
-  return 1e-6 * field_number(fields, columns.time_us);
+  const double seconds = columns.to_seconds * field_number(fields, columns.time);
+  return columns.count >= 0 ? seconds * field_number(fields, columns.count) : seconds;
 }
 
 // Event-driven list scheduling: the worker free first (then the lowest) takes what `next`
@@ -90,7 +89,7 @@ SchedulePrediction simulate(long long workers, double total_seconds, Next&& next
 
 }  // namespace
 
-RunCosts read_run_costs(const std::string& folder, long long trials) {
+RunCosts read_run_costs(const std::string& folder, std::string_view command, long long trials) {
   namespace fs = std::filesystem;
   std::string path;
   for (const char* name : {"trials.csv", "runs.csv", "summary.csv"}) {
@@ -99,9 +98,13 @@ RunCosts read_run_costs(const std::string& folder, long long trials) {
     path.clear();
   }
   if (path.empty()) throw InputError(fmt::format("{}: no trials.csv, runs.csv or summary.csv (a run folder?)", folder));
+  const ProblemKind& kind = recorded_kind(folder, command);
+  const bool summary = fs::path(path).filename() == "summary.csv";
   const std::string text = read_input_file(path, "run file", kMaxCostFileBytes);
   RunCosts costs;
   costs.source = path;
+  costs.kind = &kind;
+  costs.from_means = summary;
   std::vector<std::string> fields;
   TimeColumns columns;
   // Rows in file order: (point, trial or trial count, seconds); an item is a run of equal keys.
@@ -121,9 +124,7 @@ RunCosts read_run_costs(const std::string& folder, long long trials) {
     }
     at = end + 1;
     if (line == 1) {
-      columns = time_columns(fields, path);
-      costs.single_scan = columns.single_scan;
-      costs.from_means = columns.trials >= 0 && columns.trial == columns.trials;
+      columns = time_columns(fields, kind, summary, path);
       continue;
     }
     if (static_cast<int>(fields.size()) <= std::max(columns.point, columns.trial)) {
@@ -168,8 +169,8 @@ RunCosts read_run_costs(const std::string& folder, long long trials) {
     first = last;
   }
   if (costs.item_points.empty()) throw InputError(fmt::format("{}: no rows", path));
-  costs.parts = costs.single_scan ? 1 : static_cast<int>(rows_per_item);
-  if (costs.single_scan) {  // one unit per item: its rows together
+  costs.parts = costs.shared_items() ? 1 : static_cast<int>(rows_per_item);
+  if (costs.shared_items()) {  // one unit per item: its rows together
     for (std::size_t item = 0; item < costs.item_points.size(); ++item) {
       const auto first = item_rows.begin() + static_cast<std::ptrdiff_t>(item * static_cast<std::size_t>(rows_per_item));
       costs.unit_seconds.push_back(std::accumulate(first, first + rows_per_item, 0.0));
@@ -182,8 +183,8 @@ RunCosts read_run_costs(const std::string& folder, long long trials) {
 
 SchedulePrediction simulate_work_queue(const RunCosts& costs, long long workers, bool known_costs) {
   WorkQueueOptions options;
-  if (known_costs && !costs.single_scan) options.unit_predictions = costs.unit_seconds;
-  options.order = costs.single_scan ? WorkOrder::in_order : WorkOrder::longest_first;
+  if (known_costs && !costs.shared_items()) options.unit_predictions = costs.unit_seconds;
+  options.order = costs.shared_items() ? WorkOrder::in_order : WorkOrder::longest_first;
   options.parts = costs.parts;
   options.workers = workers;
   options.points = costs.points;

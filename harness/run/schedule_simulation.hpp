@@ -3,35 +3,41 @@
 // from its per-unit times. The work queue of the runner itself (harness/run/work_queue.hpp) hands
 // out the units in simulated time (a worker that frees first takes the next chunk; the queue
 // learns each unit's time when its chunk ends, as in a run), and so does the policy it replaced:
-// blocks of 8 whole items in item order. The times are the algorithms' own (trials.csv's time_us,
-// tet_s, or step_time_us × n_steps): the draw of the scenario, the metrics and the writing are not
-// in them, so a prediction is a lower estimate of a real run's wall time.
+// blocks of 8 whole items in item order. The times are the algorithms' own (trials.csv's time
+// column of the run's kind, harness/run/problem_kind.hpp): the draw of the scenario, the metrics
+// and the writing are not in them, so a prediction is a lower estimate of a real run's wall time.
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "harness/run/problem_kind.hpp"
 #include "harness/run/work_queue.hpp"
 
 namespace dabench {
 
 // A run's work, unit by unit in unit order (harness/run/work_queue.hpp).
 struct RunCosts {
-  std::string source;                // the file the times came from
-  bool from_means = false;           // summary.csv: per point and algorithm means, not per trial
-  bool single_scan = false;          // one unit per item (its algorithms share the reference)
-  int parts = 1;                     // units per item
+  std::string source;                 // the file the times came from
+  const ProblemKind* kind = nullptr;  // the run's (meta.json's scenario)
+  bool from_means = false;            // summary.csv: per point and algorithm means, not per trial
+  int parts = 1;                      // units per item
   int points = 1;
-  std::vector<int> item_points;      // per item, its point
-  std::vector<double> unit_seconds;  // per unit
+  std::vector<int> item_points;       // per item, its point
+  std::vector<double> unit_seconds;   // per unit
   long long items() const { return static_cast<long long>(item_points.size()); }
+  // One unit per item (single scan: an item's algorithms share the reference), run in order.
+  bool shared_items() const { return kind != nullptr && kind->shares_items(); }
 };
 
-// FOLDER/trials.csv of a run of any kind, else FOLDER/runs.csv (the track-before-detect reports'
-// per-run digest: point, trial, algorithm, n_steps, step_time_us), else FOLDER/summary.csv (a
-// committed study that keeps only its summary: every trial of a point then costs the point's
-// mean time of each algorithm). An item is the rows of one (point, trial), in file order, items in
-// (point, trial) order; a missing time (a skipped row) counts 0. With `trials`, only the items of trials < trials are kept. InputError
-// (one line) for a folder without any, a file without the columns, or items of unequal row counts.
-RunCosts read_run_costs(const std::string& folder, long long trials = -1);
+// The times of the run's kind's time column (meta.json's scenario says the kind) in
+// FOLDER/trials.csv, else FOLDER/runs.csv (the track-before-detect reports' per-run digest of the
+// same columns), else FOLDER/summary.csv (a committed study that keeps only its summary: every
+// trial of a point then costs the point's mean time of each algorithm, the columns' `_mean`). An
+// item is the rows of one (point, trial), in file order, items in (point, trial) order; a missing
+// time (a skipped row) counts 0. With `trials`, only the items of trials < trials are kept.
+// InputError (one line, naming `command`) for a folder without any or without meta.json, a file
+// without the columns, or items of unequal row counts.
+RunCosts read_run_costs(const std::string& folder, std::string_view command, long long trials = -1);
 
 struct SchedulePrediction {
   double wall_seconds = 0.0;

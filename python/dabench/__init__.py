@@ -11,12 +11,12 @@ trials. See the README's "Python" section.
 Errors the command line reports as "dabench: MESSAGE" raise ValueError(MESSAGE) here; an
 algorithm that refuses a problem raises SkippedError (or, with report=True, reports it).
 """
-from ._core import (SkippedError, __version__, algorithms, draw, git_commit, marginals, marginals_batch,
+from ._core import (SkippedError, __version__, algorithms, draw, git_commit, kinds, marginals, marginals_batch,
                     registered, scenarios, time_solver, unregister)
 from ._core import register as _register
 from ._runs import Run, load, run
 
-__all__ = ["SkippedError", "algorithms", "draw", "load", "marginals", "marginals_batch", "register",
+__all__ = ["SkippedError", "algorithms", "draw", "kinds", "load", "marginals", "marginals_batch", "register",
            "registered", "run", "Run", "scenarios", "time_solver", "unregister", "__version__", "git_commit"]
 
 

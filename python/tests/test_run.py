@@ -90,6 +90,13 @@ def test_listing_and_bad_runs(tmp_path):
     delta = {p["name"]: p for p in listed[("single_scan", "bp")]["params"]}["delta"]
     assert isinstance(delta["default"], float) and delta["doc"]
     assert "grid" in {s["name"] for s in dabench.scenarios("single_scan")}
+    kinds = {k["kind"]: k for k in dabench.kinds()}
+    assert list(kinds) == ["single_scan", "multi_scan", "tracking", "tbd"]
+    assert (kinds["single_scan"]["error"], kinds["single_scan"]["time"], kinds["single_scan"]["time_count"]) == \
+        ("max_error", "time_us", None)
+    assert (kinds["tbd"]["time"], kinds["tbd"]["time_to_seconds"], kinds["tbd"]["time_count"]) == \
+        ("step_time_us", 1e-6, "n_steps")
+    assert kinds["tracking"]["error"] in kinds["tracking"]["columns"] and kinds["tracking"]["time"] == "tet_s"
     with pytest.raises(ValueError, match="^run: trials 0 must be >= 1"):
         dabench.run("experiments/quickstart.ini", trials=0)
     with pytest.raises(ValueError, match="nothing.ini"):

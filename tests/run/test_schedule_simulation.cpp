@@ -1,6 +1,6 @@
 // `dabench schedule`'s simulation (harness/run/schedule_simulation.hpp): per-unit times read from
-// a run's trials.csv (one unit per row, or per item for single scan), and wall times that match
-// hand-computed schedules.
+// a run's trials.csv by its kind's time column (one unit per row, or per item for single scan),
+// and wall times that match hand-computed schedules.
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -15,6 +15,11 @@ using namespace dabench;
 using dabench::test::cli::TempDir;
 
 namespace {
+
+// A run folder's meta.json as far as read_run_costs reads it: the scenario, which says the kind.
+void write_meta(const TempDir& dir, const std::string& scenario) {
+  dir.write("meta.json", "{\"scenario\": \"" + scenario + "\", \"status\": \"complete\"}\n");
+}
 
 RunCosts one_point(int parts, std::vector<double> unit_seconds) {
   RunCosts costs;
@@ -32,20 +37,23 @@ TEST_CASE("schedule: per-unit times from trials.csv of each kind", "[run][schedu
         "point,x,trial,seed,algorithm,status,n_targets,time_us\n"
         "0,1,0,7,cv,ok,3,1000000\n0,1,0,7,\"cvs:a=1,b=2\",ok,3,3000000\n"
         "1,2,0,7,cv,ok,3,2000000\n1,2,0,7,\"cvs:a=1,b=2\",skipped:no_targets,0,\n");
-  RunCosts costs = read_run_costs(dir.work().string());
-  CHECK_FALSE(costs.single_scan);
+  write_meta(dir, "bearings");
+  RunCosts costs = read_run_costs(dir.work().string(), "schedule");
+  CHECK(costs.kind->name() == "multi-scan");
+  CHECK_FALSE(costs.shared_items());
   CHECK(costs.parts == 2);
   CHECK(costs.points == 2);
   CHECK_FALSE(costs.from_means);
   CHECK(costs.item_points == std::vector<int>{0, 1});
   CHECK(costs.unit_seconds == std::vector<double>{1.0, 3.0, 2.0, 0.0});
 
-  TempDir single;  // single scan: max_error; an item is one unit, its rows' times together
+  TempDir single;  // single scan: an item is one unit, its rows' times together
   single.write("trials.csv",
         "point,spacing,trial,seed,algorithm,status,n_targets,n_measurements,max_error,mean_error,time_us\n"
         "0,1,0,1,exact,ok,6,5,0,0,30\n0,1,0,1,bp,ok,6,5,0.01,0.001,2\n0,1,1,1,exact,ok,6,5,0,0,10\n0,1,1,1,bp,ok,6,5,0,0,4\n");
-  costs = read_run_costs(single.work().string());
-  CHECK(costs.single_scan);
+  write_meta(single, "grid");
+  costs = read_run_costs(single.work().string(), "schedule");
+  CHECK(costs.shared_items());
   CHECK(costs.parts == 1);
   REQUIRE(costs.unit_seconds.size() == 2);
   CHECK(costs.unit_seconds[0] == Approx(32e-6));
@@ -55,7 +63,8 @@ TEST_CASE("schedule: per-unit times from trials.csv of each kind", "[run][schedu
   tbd.write("runs.csv",
             "point,trial,algorithm,n_steps,gospa,step_time_us\n0,0,tbd-bp,50,1.5,2000\n0,1,tbd-bp,50,1.5,1000\n"
             "0,0,tbd-mb,50,1.4,100\n0,1,tbd-mb,50,1.4,300\n");
-  costs = read_run_costs(tbd.work().string());
+  write_meta(tbd, "tbd");
+  costs = read_run_costs(tbd.work().string(), "schedule");
   CHECK(costs.parts == 2);
   REQUIRE(costs.unit_seconds.size() == 4);  // items in trial order, each with its algorithms in file order
   CHECK(costs.unit_seconds[0] == Approx(0.1));
@@ -67,21 +76,33 @@ TEST_CASE("schedule: per-unit times from trials.csv of each kind", "[run][schedu
   means.write("summary.csv",
               "point,spacing,algorithm,trials,ok,max_error_mean,time_us_count,time_us_mean\n"
               "0,1,exact,3,3,0,3,30\n0,1,bp,3,3,0.01,3,2\n1,2,exact,2,2,0,2,10\n1,2,bp,2,2,0,2,4\n");
-  costs = read_run_costs(means.work().string());
+  write_meta(means, "grid");
+  costs = read_run_costs(means.work().string(), "schedule");
   CHECK(costs.from_means);
-  CHECK(costs.single_scan);
+  CHECK(costs.shared_items());
   CHECK(costs.item_points == std::vector<int>{0, 0, 0, 1, 1});
   CHECK(costs.unit_seconds[2] == Approx(32e-6));
   CHECK(costs.unit_seconds[4] == Approx(14e-6));
-  CHECK(read_run_costs(means.work().string(), 1).item_points == std::vector<int>{0, 1});  // the first trial of each point
+  CHECK(read_run_costs(means.work().string(), "schedule", 1).item_points == std::vector<int>{0, 1});  // the first trial of each point
 
   TempDir uneven;
   uneven.write("trials.csv", "point,trial,algorithm,tet_s\n0,0,a,1\n0,0,b,1\n0,1,a,1\n");
-  CHECK_THROWS_WITH(read_run_costs(uneven.work().string()), Catch::Contains("item 0,1 has 1 rows, the first had 2"));
+  write_meta(uneven, "othr");
+  CHECK_THROWS_WITH(read_run_costs(uneven.work().string(), "schedule"), Catch::Contains("item 0,1 has 1 rows, the first had 2"));
   TempDir empty;
-  CHECK_THROWS_WITH(read_run_costs(empty.work().string()), Catch::Contains("no trials.csv, runs.csv or summary.csv"));
-  empty.write("trials.csv", "a,b\n1,2\n");
-  CHECK_THROWS_WITH(read_run_costs(empty.work().string()), Catch::Contains("no point, trial and time columns"));
+  CHECK_THROWS_WITH(read_run_costs(empty.work().string(), "schedule"), Catch::Contains("no trials.csv, runs.csv or summary.csv"));
+  empty.write("trials.csv", "point,trial,time_us\n0,0,1\n");
+  CHECK_THROWS_WITH(read_run_costs(empty.work().string(), "schedule"),
+                    Catch::Equals("schedule: " + empty.work().string() + ": meta.json is missing (its scenario says the run's kind)"));
+  write_meta(empty, "othr");  // a tracking run's time is tet_s, not time_us
+  CHECK_THROWS_WITH(read_run_costs(empty.work().string(), "schedule"),
+                    Catch::EndsWith("trials.csv: no point, trial and tet_s columns (a tracking run's)"));
+  write_meta(empty, "tbd");
+  CHECK_THROWS_WITH(read_run_costs(empty.work().string(), "schedule"),
+                    Catch::EndsWith("no point, trial and step_time_us and n_steps columns (a track-before-detect run's)"));
+  write_meta(empty, "no-such-scenario");
+  CHECK_THROWS_WITH(read_run_costs(empty.work().string(), "schedule"),
+                    Catch::Contains("scenario 'no-such-scenario' is of no problem kind this build knows"));
 }
 
 TEST_CASE("schedule: simulated wall times of hand-computed schedules", "[run][schedule]") {

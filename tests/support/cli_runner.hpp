@@ -97,16 +97,17 @@ struct CliResult {
   std::string err;      // stderr
 };
 
-// A running dabench process.
+// A running dabench process (or another program built on dabench's command line, `program`).
 class CliProcess {
  public:
-  CliProcess(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& io_folder) {
+  CliProcess(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& io_folder,
+             const std::string& program = DABENCH_BINARY) {
     static int counter = 0;
     const std::string stem = "call" + std::to_string(++counter);
     out_path_ = io_folder / (stem + ".out");
     err_path_ = io_folder / (stem + ".err");
     // Everything the child needs is prepared before fork(): after it, only async-signal-safe calls.
-    std::vector<std::string> full{DABENCH_BINARY};
+    std::vector<std::string> full{program};
     full.insert(full.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& arg : full) argv.push_back(arg.data());
@@ -181,9 +182,10 @@ class CliProcess {
   fs::path out_path_, err_path_;
 };
 
-// Runs `dabench ARGS...` in dir.work() and waits for it.
-inline CliResult run_dabench(const TempDir& dir, const std::vector<std::string>& args) {
-  CliProcess process(args, dir.work(), dir.io());
+// Runs `dabench ARGS...` (or `program ARGS...`) in dir.work() and waits for it.
+inline CliResult run_dabench(const TempDir& dir, const std::vector<std::string>& args,
+                             const std::string& program = DABENCH_BINARY) {
+  CliProcess process(args, dir.work(), dir.io(), program);
   return process.wait();
 }
 

@@ -28,7 +28,8 @@ class MultiScanKind final : public RegistryKind<MultiScanScenario, MultiScanSolv
   std::vector<ItemFile> item_files(const std::string& point_columns, const Experiment&) const override {
     return {{"targets.csv", point_columns + ",trial,seed,algorithm,target,hpd,entropy,hpd_likelihood\n"}};
   }
-  std::vector<std::string> compared_metrics() const override { return {"mean_hpd", "time_us"}; }
+  std::string_view error_column() const override { return "mean_hpd"; }
+  AlgorithmTimeColumn time_column() const override { return {"time_us", 1e-6}; }
   std::unique_ptr<RunExecution> make_execution(const RunPlan& plan) const override {
     return std::make_unique<MultiScanExecution>(plan, point_scenarios(plan));
   }

@@ -25,7 +25,8 @@ class SingleScanKind final : public RegistryKind<SingleScanScenario, SingleScanS
                                                      "time_us",   "iterations",     "converged", "w_star"};
     return columns;
   }
-  std::vector<std::string> compared_metrics() const override { return {"max_error", "time_us"}; }
+  std::string_view error_column() const override { return "max_error"; }
+  AlgorithmTimeColumn time_column() const override { return {"time_us", 1e-6}; }
   std::unique_ptr<RunExecution> make_execution(const RunPlan& plan) const override {
     return std::make_unique<SingleScanExecution>(plan, point_scenarios(plan));
   }

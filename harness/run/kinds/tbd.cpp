@@ -46,7 +46,8 @@ class TbdKind final : public RegistryKind<TbdScenario, TbdTracker> {
   void add_meta(const Experiment& experiment, JsonObject& meta) const override {
     meta.add_raw("tbd_metrics", tbd_metrics_json(make_options<TbdMetricsOptions>(experiment.metric_settings, "[metrics]")));
   }
-  std::vector<std::string> compared_metrics() const override { return {"gospa", "step_time_us"}; }
+  std::string_view error_column() const override { return "gospa"; }
+  AlgorithmTimeColumn time_column() const override { return {"step_time_us", 1e-6, "n_steps"}; }
   std::unique_ptr<RunExecution> make_execution(const RunPlan& plan) const override {
     return std::make_unique<TbdExecution>(plan, point_scenarios(plan),
                                           make_options<TbdMetricsOptions>(plan.experiment.metric_settings, "[metrics]"));

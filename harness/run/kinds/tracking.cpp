@@ -67,7 +67,8 @@ class TrackingKind final : public RegistryKind<TrackingScenario, Tracker> {
     meta.add_raw("tracking_metrics",
                  tracking_metrics_json(make_options<TrackingMetricsOptions>(experiment.metric_settings, "[metrics]")));
   }
-  std::vector<std::string> compared_metrics() const override { return {"mospa_km", "tet_s"}; }
+  std::string_view error_column() const override { return "mospa_km"; }
+  AlgorithmTimeColumn time_column() const override { return {"tet_s", 1.0}; }
   std::unique_ptr<RunExecution> make_execution(const RunPlan& plan) const override {
     return std::make_unique<TrackingExecution>(
         plan, point_scenarios(plan), make_options<TrackingMetricsOptions>(plan.experiment.metric_settings, "[metrics]"));
