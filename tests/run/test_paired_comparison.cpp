@@ -3,7 +3,7 @@
 // for the normal approximation (ties, zeros, more than 50 differences), Holm's adjustment worked
 // by hand, the t interval from its closed form at two degrees of freedom, and compare_runs on
 // run folders written here (pairing, point order, refusals).
-// python/tests/test_compare.py checks the same statistics against scipy on random pairs.
+// tests/python/test_compare.py checks the same statistics against scipy on random pairs.
 #include <catch2/catch.hpp>
 
 #include <cmath>
