@@ -12,6 +12,9 @@
 #include <string_view>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "harness/core/errors.hpp"
 #include "harness/core/params.hpp"
 
 namespace dabench {
@@ -44,6 +47,18 @@ class Registry {
     return it == entries_.end() ? nullptr : &it->second;
   }
   const std::map<std::string, Entry>& entries() const { return entries_; }
+
+  // The object a SPEC ("name" or "name:key=value,...") names, built with its settings; InputError
+  // for an unknown name ("unknown <noun> 'name' (known: ...)"), an unknown key or a bad value.
+  std::unique_ptr<Product> make(std::string_view spec_text, std::string_view noun) const {
+    const Spec spec = parse_spec(spec_text);
+    const Entry* entry = find(spec.name);
+    if (entry == nullptr) {
+      const std::string known = names();
+      throw InputError(fmt::format("unknown {} '{}' (known: {})", noun, spec.name, known.empty() ? "none registered" : known));
+    }
+    return entry->create(spec.settings);
+  }
 
   std::string names() const {
     std::string text;

@@ -19,7 +19,6 @@
 
 #include <fmt/format.h>
 
-#include "harness/core/errors.hpp"
 #include "harness/core/params.hpp"
 #include "harness/core/random_stream.hpp"
 #include "harness/core/registry.hpp"
@@ -48,8 +47,8 @@ class LocationScenario {
 class LocationEstimator {
  public:
   virtual ~LocationEstimator() = default;
-  // x̂ from the measurements (sorted in `work`, reused between calls); a refusal goes in `report`.
-  virtual double estimate(const std::vector<double>& z, std::vector<double>& work, SolveReport& report) = 0;
+  // x̂ from the measurements, sorted (at least one).
+  virtual double estimate(const std::vector<double>& sorted_z) const = 0;
 };
 
 Registry<LocationScenario>& location_scenarios() {
@@ -62,13 +61,8 @@ Registry<LocationEstimator>& location_estimators() {
   return registry;
 }
 
-std::unique_ptr<LocationEstimator> make_location_estimator(std::string_view spec_text) {
-  const Spec spec = parse_spec(spec_text);
-  const auto* entry = location_estimators().find(spec.name);
-  if (entry == nullptr) {
-    throw InputError(fmt::format("unknown location estimator '{}' (known: {})", spec.name, location_estimators().names()));
-  }
-  return entry->create(spec.settings);
+std::unique_ptr<LocationEstimator> make_location_estimator(std::string_view spec) {
+  return location_estimators().make(spec, "location estimator");
 }
 
 // ---- a scenario and two estimators ---------------------------------------------------------------
@@ -122,17 +116,11 @@ class TrimmedMean final : public LocationEstimator {
   static constexpr std::string_view kName = "example-mean";
   static constexpr std::string_view kSummary = "mean of the measurements, trimmed at both ends";
   explicit TrimmedMean(const Options& options) : options_(options) {}
-  double estimate(const std::vector<double>& z, std::vector<double>& work, SolveReport& report) override {
-    if (z.empty()) {
-      report.skipped = "no_measurements";
-      return 0.0;
-    }
-    work.assign(z.begin(), z.end());
-    std::sort(work.begin(), work.end());
-    const auto cut = static_cast<std::size_t>(options_.trim * static_cast<double>(work.size()));
+  double estimate(const std::vector<double>& z) const override {
+    const auto cut = static_cast<std::size_t>(options_.trim * static_cast<double>(z.size()));
     double sum = 0.0;
-    for (std::size_t j = cut; j < work.size() - cut; ++j) sum += work[j];
-    return sum / static_cast<double>(work.size() - 2 * cut);
+    for (std::size_t j = cut; j < z.size() - cut; ++j) sum += z[j];
+    return sum / static_cast<double>(z.size() - 2 * cut);
   }
 
  private:
@@ -150,15 +138,9 @@ class Median final : public LocationEstimator {
   static constexpr std::string_view kName = "example-median";
   static constexpr std::string_view kSummary = "median of the measurements";
   explicit Median(const Options&) {}
-  double estimate(const std::vector<double>& z, std::vector<double>& work, SolveReport& report) override {
-    if (z.empty()) {
-      report.skipped = "no_measurements";
-      return 0.0;
-    }
-    work.assign(z.begin(), z.end());
-    std::sort(work.begin(), work.end());
-    const std::size_t half = work.size() / 2;
-    return work.size() % 2 == 1 ? work[half] : 0.5 * (work[half - 1] + work[half]);
+  double estimate(const std::vector<double>& z) const override {
+    const std::size_t half = z.size() / 2;
+    return z.size() % 2 == 1 ? z[half] : 0.5 * (z[half - 1] + z[half]);
   }
 };
 
@@ -174,7 +156,7 @@ const Registration<Median, LocationEstimator> median_registration(location_estim
 struct LocationWorker final : RunWorker {
   std::vector<std::unique_ptr<LocationEstimator>> estimators;  // one per SPEC
   LocationSample sample;
-  std::vector<double> work;
+  std::vector<double> sorted_z;
   SolveReport report;
 };
 
@@ -195,7 +177,14 @@ class LocationExecution final : public RunExecution {
     const auto [point, trial] = draw_trial(plan_, scenarios_, item, worker.sample);
     worker.report.reset();
     const auto start = std::chrono::steady_clock::now();
-    const double estimate = worker.estimators[part]->estimate(worker.sample.z, worker.work, worker.report);
+    double estimate = 0.0;
+    if (worker.sample.z.empty()) {
+      worker.report.skipped = "no_measurements";
+    } else {
+      worker.sorted_z.assign(worker.sample.z.begin(), worker.sample.z.end());
+      std::sort(worker.sorted_z.begin(), worker.sorted_z.end());
+      estimate = worker.estimators[part]->estimate(worker.sorted_z);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     worker.busy_seconds += seconds;
     const bool ok = worker.report.skipped.empty();
