@@ -18,7 +18,7 @@
 // into m children: child t forces r_u → s(r_u) for u < t and forbids r_t → s(r_t). The children
 // partition the parent's events minus s, so every event is output once and in cost order.
 // Not implemented: Miller-Stone-Cox's dual reuse and lower-bound pruning (clusters of MD-HMHT
-// are tiny; see ../shared/mdhmht-notes.md §5).
+// are tiny; see docs/models/md-hmht.md, "Cost").
 //
 // Cost: at most k · R subproblems, each O(R (C + R)) to build and O(R² (C + R)) to solve.
 // Ties: deterministic for a given input — the heap pops the least cost, among equal costs the

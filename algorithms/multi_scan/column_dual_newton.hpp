@@ -1,67 +1,34 @@
 #pragma once
 // The reduced column-dual solver for the multiple-scan convex free energy (63) of Williams & Lau,
 // "Multiple scan data association by convex variational inference" (multiscan-convex-variational):
-// the same minimiser as Algorithm 2 (convex_variational.hpp), reached by damped Newton on a
-// concave dual with one variable per measurement instead of primal–dual coordinate ascent over
-// the particle tables. Derivation (from ../shared/multiscan-fast-solver.md §2–3, rechecked here):
-//  1. Each track is a star tree (A, one a_t per scan), so for fixed association marginals μ^i its
-//     Bethe entropy −H(A) − Σ_t H(a_t | A) is its exact entropy, and minimising (63) over the
-//     pair beliefs leaves A_i*(μ^i), the conjugate of the track's log partition function
-//     log Z_i(θ) = log Σ_A ψ^i(A) Π_t Σ_a ψ^i_t(A, a) e^{θ_t(a)} (Wainwright & Jordan, Thm 3.4).
-//     (63) becomes: minimise Σ_i F_i(μ^i) + Σ_t β_t Σ_j q⁰_tj log q⁰_tj subject to the column
-//     constraints (61) Σ_i μ^i_t(j) + q⁰_tj = 1, with
-//       F_i = A_i* − Σ_t γ_t Σ_j (1 − μ^i_t(j)) log(1 − μ^i_t(j));
-//     the row constraints (62) hold by construction.
-//  2. F_i is strictly convex if Σ_t γ_t < 1: −H(q) = −(1 − Σγ) H(q) − Σ_t γ_t H(rest | a_t)
-//     − Σ_t γ_t H(a_t), and each γ_t [−H(a_t) − Σ_j (1 − μ_j) log(1 − μ_j)] is convex on the
-//     simplex (Vontobel, Thm 20, as in the paper's proof of Lemma 3). This re-derives (64).
-//  3. Dualising only (61), with multipliers σ_t(j) (the σ of (132)–(133)): the dual
-//       D(σ) = Σ_i min_μ [F_i(μ) + ⟨σ, μ⟩] − Σ_tj [β_t q⁰_tj + σ_tj],  q⁰_tj = e^{−σ_tj/β_t − 1} (133),
-//     is concave and C¹ with gradient r_tj = Σ_i μ^i_t(j) + q⁰_tj − 1, and strong duality holds
-//     with an attained maximum when every track can miss in every scan (the Slater point "every
-//     track misses": not in general, as the notes have it — a track that must take measurement j
-//     pushes σ_tj to +∞; applicable() sends such problems to Algorithm 2). The inner minimum of track i is the
-//     tilted posterior of tilted_track.hpp (θ = −σ on scans with γ = 0; on the others θ solves
-//     θ = −σ − γ[1 + log(1 − μ(θ))], the analogue of (132), by the track's inner Newton).
-//  4. −∇²D = K = Σ_i K_i + diag(q⁰/β), with K_i ⪰ 0 the derivative of track i's marginals
-//     through its inner solve (tilted_track.hpp), so K ≻ 0: damped Newton with Armijo
-//     backtracking on D converges from any start and quadratically near the maximiser (Boyd &
-//     Vandenberghe §9.5). At the maximiser every condition of (56)–(62) and (132)–(133) holds,
-//     so its beliefs are the minimiser of (63) that Algorithm 2 approaches.
-// The step is not the plain Δσ = K⁻¹ r: D's clutter part C(σ) = −Σ_tj [β_t q⁰_tj + σ_tj] has
-// curvature q⁰/β, and on the past scans of cvs (β ≈ 0.01) a plain step of a few units in σ
-// multiplies q⁰ by e^{hundreds} (most of the damped phase the notes report). The step maximises
-// a model that keeps C exact and quadratises only the tracks' part (newton_direction()), and is
-// cut to a trust radius of 10 in every σ_tj, which the model needs where every track's
-// indicator of an association is all but certain (its curvature there is ~1e-30).
-// Theorem 3 (eq 91) changes no table: reweight() adds Δγ[1 + log(1 − μ^i_t(j))] − Δβ[1 + log q⁰_tj]
-// to the track's offsets δ^i_t(j) and moves σ_tj by −Δβ[1 + log q⁰_tj] (eq 137), after which the
-// previous solution is exactly optimal (the next solve takes no Newton step).
-//
-// Hessian-free variant (method kLbfgs): L-BFGS on the same dual (Liu & Nocedal 1989), with the
-// diagonal of K as initial inverse-Hessian scaling and the same line search. It needs only the
-// gradient, so its cost does not grow with D²; kAuto uses it when the number of column duals
-// D = Σ_t m_t exceeds `newton_limit` (1500). Newton's matrix costs about (mass-carrying
-// hypotheses) × (associations per hypothesis)² per track plus a few D³/3 Cholesky factors per
-// step, so the switch is set where the factors (≈ 10⁹ flops at D = 1500) start to cost more
-// than the passes L-BFGS repeats (an estimate, not a measurement). Newton against L-BFGS on the
-// same trials: bearings_trial/cvs_newton, cvs_lbfgs, cv_newton, cv_lbfgs in
-// bench/multi_scan/bench_multi_scan.cpp.
-//
-// Engineering (none of it changes the maximiser): a line-search trial first evaluates D only (the
-// scans outside the tracks' inner sets are read once); the marginals of those scans — a second
-// read — are computed only for the point kept. The inner unknowns of a trial start from their
-// first-order prediction (∂v/∂σ from the Newton matrix). With one γ-scan (cvs) the inner solves
-// read no table (tilted_track.hpp); with several (cv) they are inexact while ‖r‖ is large (an
-// inexact Newton method: inner tolerance 1e-2 ‖r‖∞, down to `inner.tolerance` at the end). When
-// one scan was appended since the last solve (the sequential methods), its duals are first solved
-// alone with the other scans fixed (`presolve`: block Newton, which reads no table either), which
-// removes most of the damped phase of the full iteration. Costs: benchmark bearings_trial in
-// bench/multi_scan/bench_multi_scan.cpp.
-//
-// Stopping: the largest column residual |r_tj| below `tolerance` and every inner residual
-// |v − log(1 − μ)| below `inner.tolerance`. Near the maximiser D changes by less than its
-// floating-point resolution; a step is then accepted when it lowers ‖r‖ instead.
+// the minimiser of (63) that Algorithm 2 (convex_variational.hpp) approaches, reached by damped
+// Newton on a concave dual with one variable per measurement: σ_t(j), the multiplier of the
+// column constraint (61) (the σ of (132)–(133)).
+//  - Each track is a star tree (A, one a_t per scan), so its part of (63) is minimised exactly for
+//    given association marginals by the tilted posterior of tilted_track.hpp; (57)–(59) and (62)
+//    hold by construction, and only (61) is dualised.
+//  - Dual: D(σ) = Σ_i TiltedTrack::dual_value() − Σ_tj [β_t q⁰_tj + σ_tj], q⁰_tj = e^{−σ_tj/β_t − 1}
+//    (133); gradient r_tj = Σ_i μ^i_t(j) + q⁰_tj − 1 (the column residual);
+//    −∇²D = K = Σ_i K_i + diag(q⁰/β), K_i ⪰ 0 (track_newton_matrix.hpp), so K ≻ 0.
+//  - Invariants the callers keep: Σ_t γ_t < 1 (each track's part strictly convex, cf. (64)), and
+//    applicable() — every track can miss in every scan — without which the dual maximum is not
+//    attained (such problems go to Algorithm 2).
+//  - At the maximiser every condition of (56)–(62) and (132)–(133) holds, and D equals (63) at the
+//    beliefs (with the modified factors ψ̄ of (91)).
+//  - Step (newton_direction()): the maximiser of a model that keeps D's clutter term exact and
+//    quadratises the tracks' part, cut to a trust radius of 10 in every σ_tj; Armijo backtracking
+//    on D (line_search()). kLbfgs: L-BFGS on the same dual, diag(K)⁻¹ scaling, same line search;
+//    kAuto uses it when D = Σ_t m_t exceeds `newton_limit`.
+//  - Stopping: every |r_tj| ≤ `tolerance` and every inner residual |v − log(1 − μ)| ≤
+//    `inner.tolerance`. Where D's change is below its floating-point resolution, a step is
+//    accepted when it lowers ‖r‖. With several γ-scans (cv) the inner solves are inexact while ‖r‖
+//    is large (inner tolerance 1e-2 ‖r‖∞, down to `inner.tolerance`).
+//  - Theorem 3 (eq 91) changes no table: reweight() adds Δγ[1 + log(1 − μ^i_t(j))] − Δβ[1 + log q⁰_tj]
+//    to each track's offsets δ^i_t(j) and moves σ_tj by −Δβ[1 + log q⁰_tj] (eq 137); the previous
+//    solution then stays exactly optimal (the next solve takes no step).
+//  - A newly appended scan (sequential methods) is first solved alone with the other scans fixed
+//    (`presolve`: block Newton, which reads no table).
+// Background: docs/models/column-dual-newton.md
 #include <deque>
 #include <span>
 #include <vector>

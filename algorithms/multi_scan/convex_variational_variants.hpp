@@ -11,7 +11,8 @@
 //   msbp         γ_t' = 1 on every scan, heuristic weights: multiple-scan BP (non-convex)
 // Every method sets β_t' so that block (t',1) of Algorithm 2 sees β̃_t' = β_t'/(κ_{f,t'} +
 // κ_{t',1,t'}) = beta_tilde (default 1, as in the paper's experiments): with Lemma 4 that is
-// β_t' = β̃ (γ_t' + η/(|S|+1)), with the heuristic weights β_t' = β̃.
+// β_t' = β̃ (γ_t' + 2η/(|S|+1)) (κ_{f,t'} = η/(|S|+1) and κ_{t',1,t'} = γ_t' + η/(|S|+1), eqs (69),
+// (71)), with the heuristic weights β_t' = β̃.
 //
 // Solvers. cv, cvs, cvh and cvsh minimise the convex free energy (63) with their (γ, β), which
 // is strictly convex (Σγ < 1); its minimiser does not depend on how (63) is split, so the κ

@@ -1,42 +1,36 @@
 #pragma once
 // One track of the reduced column-dual problem of the multiple-scan convex free energy (63) of
 // Williams & Lau, "Multiple scan data association by convex variational inference"
-// (multiscan-convex-variational); the solver around it is column_dual_newton.hpp, whose header
-// gives the derivation. A track is a star tree — hypothesis A, one association a_t per scan — so
-// for fixed association marginals its Bethe entropy −H(A) − Σ_t H(a_t | A) is exact, and the
-// minimising pair beliefs are those of the tilted posterior
+// (multiscan-convex-variational); the solver around it is column_dual_newton.hpp. A track is a
+// star tree (hypothesis A, one association a_t per scan), so for fixed association marginals its
+// part of (63) is minimised by the tilted posterior
 //   q(A, a_1..a_S) ∝ ψ(A) Π_t ψ_t(A, a_t) e^{τ_t(a_t)},   τ_t(0) = 0,
 //   τ_t(j) = −σ_t(j) + δ_t(j) − γ_t (1 + v_t(j)),          j ≥ 1,
-// with σ the column duals of (61), δ the accumulated Theorem-3 offsets of eq (91) (the factor
-// modification, kept as numbers instead of rewriting the tables) and, on the scans with γ_t > 0,
-// v_t(j) = log(1 − μ_t(j)) solving the track's stationarity condition (the analogue of (132))
-//   θ_t(j) = −σ_t(j) − γ_t [1 + log(1 − μ_t(j))]            (the inner solve).
+// with σ the column duals of (61), δ the accumulated Theorem-3 offsets of eq (91) (kept as numbers;
+// the tables are never rewritten) and, on the scans with γ_t > 0, the inner unknowns
+// v_t(j) = log(1 − μ_t(j)), the track's form of the stationarity condition (132), solved by damped
+// Newton on v − log(1 − μ(v)) = 0 (the inner solve).
 // Marginals: μ_t(a) = Σ_A q(A) ψ_t(A, a) e^{τ_t(a)} / s_t(A), s_t(A) = Σ_a ψ_t(A, a) e^{τ_t(a)},
 // q(A) ∝ ψ(A) Π_t s_t(A).
 //
-// Passes. The factor tables are column-major (one column per association, contiguous over the
-// hypotheses), so every pass is a few streaming multiply–adds per entry. An evaluation reads
-// the scans outside the inner set once (their evidence s_t and the product over them, `rest`)
-// and then solves the inner equations on the inner set (the γ-scans, plus an `extra_inner_scan` whose
-// duals move alone during the solver's new-scan presolve). When the inner set is one scan g (as
-// in cvs) that solve reads no table at all: q(A) ∝ rest(A) s_g(A) gives
+// Passes. Factor tables are column-major (one contiguous column per association). An evaluation
+// reads the scans outside the inner set once (their evidence s_t and its product, `rest`), then
+// solves the inner equations on the inner set (the γ-scans, plus an `extra_inner_scan` during the
+// solver's new-scan presolve). With one inner scan g (as in cvs) that solve reads no table:
 //   μ_g(a) = e^{τ_g(a)} U(a) / Σ_b e^{τ_g(b)} U(b),   U(a) = Σ_A rest(A) ψ_g(A, a),
-// with U fixed by the other scans, and log Z from the same sums. finish() then reads the other
-// scans again for their marginals — only for points the solver keeps.
+// with U fixed by the other scans. finish() reads the other scans again for their marginals, only
+// for points the solver keeps. Newton matrix and the inner Jacobian across scans:
+// track_newton_matrix.hpp.
 //
-// Newton matrix (add_newton_matrix): track_newton_matrix.hpp, which also gives the inner solve
-// its cross-scan Jacobian.
-//
-// Numerics (the traps of ../shared/multiscan-fast-solver.md, Risks):
-//  - linear domain over the hypotheses, scaled: per scan the tilts are e^{τ − c_t} with
-//    c_t = max(0, max_j τ_t(j)) (no overflow), and the running product over scans is rescaled by
-//    an exact power of two after every scan (no underflow of the heaviest hypothesis);
-//  - marginals are kept as logarithms (log μ = τ − c_t + log U − log Z: never the log of an
-//    underflowed product), and complements 1 − μ_t(j) are log-sums of the other entries, never
-//    1 − x (at γ = 0.95 they reach e^{−100} and below);
-//  - hypotheses whose every feasible event has probability 0 (ψ(A) = 0, or an all-zero factor row
-//    in some scan) are dropped from the tables; an association that is impossible for this
-//    track (its column is zero) takes no part in the inner solve.
+// Numerical invariants:
+//  - linear domain over the hypotheses, scaled: per scan the tilts are e^{τ − c_t},
+//    c_t = max(0, max_j τ_t(j)), and the running product over scans is rescaled by an exact power
+//    of two after every scan (no overflow, no underflow of the heaviest hypothesis);
+//  - marginals are kept as logarithms (log μ = τ − c_t + log U − log Z), and complements
+//    1 − μ_t(j) are log-sums of the other entries, never 1 − x (at γ = 0.95 they reach e^{−100});
+//  - hypotheses with ψ(A) = 0 or an all-zero factor row in some scan are dropped from the tables;
+//    an association impossible for this track (zero column) takes no part in the inner solve.
+// Background: docs/models/column-dual-newton.md
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Object-to-cell exclusivity of TBD-MB (tbd-bp-model.md §4.1 [R]: "each cell explained by at
+// Object-to-cell exclusivity of TBD-MB (docs/models/track-before-detect.md §4.1 [R]: "each cell explained by at
 // most one object", resolved with the sum-product algorithm). RECONSTRUCTION of a piece of
 // Kropfreiter, Williams & Meyer (FUSION 2021), whose body was not available.
 //

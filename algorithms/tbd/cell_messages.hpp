@@ -1,6 +1,6 @@
 #pragma once
 // The iterative message passing of TBD-BP between potential objects (POs) and data cells
-// (tbd-bp-supplement, Sec. 1; tbd-bp-model.md §3.3), on particle POs:
+// (tbd-bp-supplement, Sec. 1; docs/models/track-before-detect.md §3.3), on particle POs:
 //
 //  β^(ℓ)_{n,j}(y) ∝ α_n(y) Π_{j'≠j} κ^(ℓ−1)_{n,j'}(y)              (κ^(0) ≡ 1, so β^(1) = α)
 //  μ^(ℓ)_{n,j} = ∫ μ_j(x) β^(ℓ)_{n,j}(x,1) dx,  R^(ℓ)_{n,j} = ∫ (C_j(x) + μ_j μ_jᵀ) β^(ℓ)_{n,j}(x,1) dx

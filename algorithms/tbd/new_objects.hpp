@@ -1,5 +1,5 @@
 #pragma once
-// New potential objects, one per data cell (tbd-bp-model.md §3.2; shared by TBD-BP and TBD-MB).
+// New potential objects, one per data cell (docs/models/track-before-detect.md §3.2; shared by TBD-BP and TBD-MB).
 //
 //  - make_cell_objects(): PO j is uniform over cell j's square, held as a Q × Q midpoint
 //    quadrature of the cell (μ_j(x) and C_j(x) depend on the position only, so the velocity

@@ -1,9 +1,9 @@
 #pragma once
 // A potential object (PO) of the particle track-before-detect trackers (tbd-bp-supplement;
-// tbd-bp-model.md §3): y_n = (x_n, r_n), x = [p_x, p_y, v_x, v_y], held as weighted particles of
+// docs/models/track-before-detect.md §3): y_n = (x_n, r_n), x = [p_x, p_y, v_x, v_y], held as weighted particles of
 // x given r = 1 plus the existence probability r. Shared by TBD-BP and TBD-MB.
 //
-//  - predict(): the prediction message α_n of a legacy PO (tbd-bp-model.md §3.2): each particle
+//  - predict(): the prediction message α_n of a legacy PO (docs/models/track-before-detect.md §3.2): each particle
 //    moves by the nearly-constant-velocity model, r⁻ = p_s r, with p_s = 0 once the PO's mean
 //    has left the region ([C] of the notes).
 //  - resample(): systematic resampling to a given count (equal weights after).

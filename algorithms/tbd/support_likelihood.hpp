@@ -1,5 +1,5 @@
 #pragma once
-// The separable TBD likelihood of TBD-MB (tbd-bp-model.md §4.1 [R]) on an object's support:
+// The separable TBD likelihood of TBD-MB (docs/models/track-before-detect.md §4.1 [R]) on an object's support:
 // an object at position p contributes to the cells S(p) whose centre lies within `radius` of
 // p, and alone there (other objects' supports are disjoint from its own: cell_exclusion.hpp).
 // Against the noise-only image its likelihood ratio is

@@ -2,9 +2,9 @@
 // TBD-BP: track-before-detect by belief propagation (Liang, Kropfreiter & Meyer, "A BP method
 // for track-before-detect", IEEE SPL 30, 2023; derivations in tbd-bp-supplement.txt), on
 // particles. The letter's body was not available: what it leaves open follows
-// tbd-bp-model.md, and every such reading is an option below.
+// docs/models/track-before-detect.md, and every such reading is an option below.
 //
-// One step k (tbd-bp-model.md §3):
+// One step k (docs/models/track-before-detect.md §3):
 //  1. Legacy POs: α_n by prediction (algorithms/tbd/particle_object.hpp; r⁻ = p_s r̃). At
 //     k = 0 the problem's initial objects, if any, are the legacy POs' α.
 //  2. L iterations of the message passing of algorithms/tbd/cell_messages.hpp among the legacy
@@ -40,7 +40,7 @@
 //     (systematic). A kept new PO becomes a legacy PO: P particles drawn from its α (uniform in
 //     the cell, velocity prior) and weighted by Π_j κ̃ at their positions (the messages it was
 //     evaluated with), then resampled.
-//  5. Duplicates [R] (`merge_distance`, off by default; tbd-bp-model.md §3.4 proposes merging
+//  5. Duplicates [R] (`merge_distance`, off by default; docs/models/track-before-detect.md §3.4 proposes merging
 //     new POs closer than 1 m): in decreasing r̃, a PO whose mean lies within merge_distance
 //     of a PO already kept is deleted. Measured in results/tbd/REPORT.md: at L = 2 POs pile up
 //     where crossing objects were, each over-explained cell making the others' ratios near 1.

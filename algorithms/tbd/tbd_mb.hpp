@@ -3,7 +3,7 @@
 // Meyer, "A Scalable Track-Before-Detect Method With Poisson/Multi-Bernoulli Model", FUSION
 // 2021 (arXiv 2109.01490), the letter's baseline that "does not systematically model object
 // interaction". RECONSTRUCTION: that paper's body was not available; what follows is the
-// reading of tbd-bp-model.md §4.1 [R], built from its abstract (multi-Bernoulli approximation
+// reading of docs/models/track-before-detect.md §4.1 [R], built from its abstract (multi-Bernoulli approximation
 // of the MBM posterior, data association by the sum-product algorithm, recycling of Bernoulli
 // components) and the separable TBD likelihood. Every choice is an option below.
 //

@@ -1,103 +1,43 @@
 #pragma once
-// MD-HMHT — the multi-detection hypothesis-oriented MHT of jdt-vb-multipath-othr (Sec. IV-B:
-// "MD-MHT [16] approximates the three-dimensional multipath data association by path-dependent
-// two-dimensional assignments ... We here use the hypothesis-oriented framework together with
-// Murty's approximation method [44], [45]"; parameters in Sec. IV-A2; results in Table IV).
-// The paper gives the structure and four numbers; everything else below is our reading,
-// collected with its sources in ../shared/mdhmht-notes.md and stated here. [P] = the paper,
-// [O] = our choice (an option where it matters).
+// MD-HMHT: the multi-detection hypothesis-oriented MHT that the JDT-VB paper
+// (jdt-vb-multipath-othr, Sec. IV-B; parameters in Sec. IV-A2) uses as a baseline. Its source,
+// MD-MHT [16], was not available: the paper gives the structure and four numbers (n, the window,
+// the 3 / 5 empty-gate deletion rule, p_g); the rest is our reading, each open choice an option.
 //
-// Model. Ground state x = [g, ġ, ϑ, ϑ̇] with the problem's F and Q (eq 1); per path τ the
-// measurement h^τ(x) + w, w ~ N(0, R^τ), detection probability p^τ_d (eq 2, eq 57); Poisson
-// clutter of density λ = N_c / V. The tracker uses the problem's p^τ_d and λ, as MPTF does.
-// Filter: UKF (algorithms/tracking/ukf.hpp) [O]: the paper does not name one.
+// Model: ground state x = [g, ġ, ϑ, ϑ̇] with the problem's F and Q; per path τ a detection with
+// probability p^τ_d, measured as h^τ(x) + w, w ~ N(0, R^τ); Poisson clutter of density λ = N_c / V.
+// The tracker uses the problem's p^τ_d and λ. Filter: UKF (md_hmht_tracks.hpp).
 //
-// Pseudo-targets [P S:1789-1793]. Each (track i, path τ) is a row of a 2-D assignment whose
-// columns are the scan's measurements: each row takes at most one measurement, each measurement
-// goes to at most one row or is clutter. This is eq (3)'s constraint set read "at most one"
-// (algorithms/tracking/multipath_association.hpp), with "at most one path per (target,
-// measurement)" implied by the columns' exclusivity.
+// Per scan, for each parent hypothesis h:
+//  - rows are h's (track, path) pseudo-targets, columns the measurements; a row takes at most one
+//    gated measurement, a measurement goes to at most one row (eq (3) read "at most one",
+//    multipath_association.hpp). Gate d² ≤ γ, the χ²_{n_y} quantile at p_g. A gated pair costs
+//      c_pj = −ln ψ_pj,   ψ_pj = p^τ_d N(y_j; ŷ^τ, S^τ) / ((1 − p^τ_d p_g) λ),
+//    any other pair +∞.
+//  - assignment = joint: rows sharing measurements form clusters; Murty's n best per cluster
+//    (algorithms/assignment/murty.hpp, n = `hypotheses`) are merged into h's n best events.
+//    assignment = per_path: paths EE, EF, FE, FF in turn, each over the measurements the earlier
+//    paths left, a beam of n partial events.
+//  - the child of h under event a scores (an LLR against "all clutter", common terms dropped)
+//      s(child) = s(h) + Σ_{rows p of h} ln(1 − p^τ_d p_g) − Σ_{(p,j)∈a} c_pj.
+// Selection: the n best children overall (per_parent = 0) or of each parent (1); then N-scan
+// pruning keeps the children whose ancestor `window` scans back is the best child's.
 //
-// Path-dependent assignments. The paper: "MD-MHT [16] approximates the three-dimensional
-// multipath data association by path-dependent two-dimensional assignments and is a suboptimal
-// but computational effective MHT algorithm" (S:2312-2316; likewise S:129-130); [16] itself is
-// not available (../shared/mdhmht-notes.md §2). The paper says "path-dependent" of what is
-// indexed by the path τ (path-dependent tracks, state estimates, detection indicators), and the
-// one pseudo-target assignment above is exact for the 3-D problem, not an approximation of it.
-// So there are two options:
-//  - `assignment = joint` (default, dabench's reading): one 2-D assignment per parent over all
-//    (track, path) rows; Murty ranks its events exactly.
-//  - `assignment = per_path` (our reading of the paper's wording [O]): one 2-D assignment per
-//    path τ = EE, EF, FE, FF in turn. Its rows are the parent's tracks through τ; its columns
-//    are the measurements that no earlier path of the event took, so a measurement keeps one
-//    source. A beam of the `hypotheses` best partial events runs over the paths. Each partial
-//    is extended by path τ's `hypotheses` best assignments (Murty per cluster, merged), and the
-//    `hypotheses` best extensions go on.
-//    The result is suboptimal and depends on the path order. With one hypothesis it is the
-//    greedy path-by-path assignment, so a measurement in two paths' gates goes to the earlier
-//    path if that path's best assignment takes it. With a beam at least as wide as the parent's
-//    events it gives exactly the joint events.
-//    Not chosen: per-path assignments that each see every measurement. They would fit S:386's
-//    "a measurement via any one propagation path has only one source" read per path, but they
-//    let a measurement update one track through two paths.
+// Tracks: LLR ℓ = 0 at the head, plus Σ_τ ln(1 − p^τ_d p_g) + Σ_{assigned τ} ln ψ per scan;
+// confirmed once ℓ ≥ confirm_llr; deleted after deletion_misses successive scans with no
+// measurement in any path's gate (a tentative track is dropped, a confirmed one ended). Heads:
+// form_track_heads (track_heads.hpp) on the measurements outside every gate of every hypothesis,
+// so every child gets the same heads; the path readings of one return group are a family, of
+// which one confirmed member stays (largest ℓ, then the oldest).
 //
-// Gates and weights. Per row, the UKF prediction ŷ^τ, S^τ (unscented transform of the predicted
-// state through h^τ, plus R^τ); measurement j is gated when d² = (y_j − ŷ)ᵀ S⁻¹ (y_j − ŷ) ≤ γ,
-// γ = χ²_{n_y} quantile at p_g [P: p_g = 0.971]. The likelihood ratio of row p taking j against
-// p missed and j clutter (Reid; Blackman [44]'s score increments):
-//   ψ_pj = p^τ_d N(y_j; ŷ^τ, S^τ) / ((1 − p^τ_d p_g) λ),    cost c_pj = −ln ψ_pj,
-// and +∞ for pairs outside the gate. A hypothesis' score is the log-likelihood ratio of its
-// association history against "every measurement clutter": a child of parent h under the
-// assignment event a scores
-//   s(child) = s(h) + Σ_{rows p of h} ln(1 − p^τ_d p_g) − Σ_{(p,j)∈a} c_pj,
-// the same for every child of a scan up to terms common to all (new tracks, clutter).
+// Invariants: track nodes are immutable and shared by hypotheses; each distinct node is predicted
+// and gated once per scan, each (node, assignment) updated once. Scores are relative to the
+// scan's best hypothesis (0; the others ≤ 0). Output: the best hypothesis' confirmed tracks, live
+// and ended, filtered estimates from the head's scan (report_from = head) or the confirmation
+// scan; an ended track stops at its last assigned measurement. literal = 1 forces
+// alternative_heads = 0, report_from = confirmation, assignment = per_path (resolved()).
 //
-// Hypotheses [P n, O meaning]. Per parent, rows with a gated measurement split into clusters
-// (no shared measurement across clusters); Murty's ranked assignment (algorithms/assignment/murty.hpp)
-// gives each cluster's `hypotheses` best events and RankedListMerge the parent's best
-// combinations. Reading A (default, Cox & Hingorani [45]): the `hypotheses` best children over
-// all parents survive; reading B (`per_parent = 1`): the best `hypotheses` children of every
-// parent survive, so only the window bounds the tree. Window [P W = 3, O meaning]: N-scan
-// pruning — children whose ancestor `window` scans back differs from the best child's are
-// dropped, so decisions older than `window` scans are final.
-//
-// Tracks. A track's log-likelihood ratio (its own share of the score) adds, per scan,
-// Σ_τ ln(1 − p^τ_d p_g) + Σ_{assigned τ} ln ψ. Confirmation [O]: once it reaches `confirm_llr`
-// (default 6.9 = ln((1 − β)/α), α = 1e-3, β = 0.01: the SPRT upper threshold of [44]); a true
-// track gains ~+11 per scan at p_d = 0.75 (~+5 at 0.4), a clutter head ~0 or less. Deletion
-// [P]: after `deletion_misses` successive scans with no measurement in any of its paths' gates
-// (3 if N_c ≤ 200, else 5) — a property of the track, not of the hypothesis. A deleted
-// confirmed track is output up to its last scan with an assigned measurement; a deleted
-// tentative track is dropped.
-//
-// Initiation [P S:2566-2568: the same multiple-measurement clustering as JDT-VB]. The
-// measurements outside every gate of every parent's tracks are conflict-free in all children,
-// so JDT-VB's initiator (form_track_heads, Sec. III-E, ρ = [80 km, 0.005 km/s, 0.03 rad])
-// starts the same tentative tracks in every child. With `alternative_heads` (dabench's default,
-// as in jdt-vb; not in the paper) every equally consistent path reading of a return group starts
-// a head; the readings of one group are siblings, and once one is confirmed the others are
-// deleted (of siblings confirmed at one scan, the one with the largest LLR stays) [O].
-//
-// Output: the best hypothesis after the last scan, its confirmed tracks (live and deleted),
-// filtered means and covariance diagonals (the paper's MD-HMHT reports filtered estimates: it
-// blames JDT-VB's smaller error on smoothing, S:2582-2586), from the head's scan
-// (`report_from = head`, default: the tentative stage is reported once confirmed) or from the
-// confirmation scan on (`report_from = confirmation`: a track is what the tracker has
-// confirmed, as in the MHT literature [44] and as the paper's "tentative track latency" metric
-// presumes, S:2487).
-//
-// Paper-literal set: `literal = 1` sets alternative_heads = 0 (one head per return group, the
-// paper's initiator, S:2251-2289), report_from = confirmation and assignment = per_path
-// (above), whatever those keys say; the other options keep their values (their defaults are
-// already the paper's: n, W, deletion after 3 / 5 empty-gate scans, p_g, n best overall as
-// "keeps the first n best hypothesis", S:2465). The defaults are dabench's readings, under
-// which Table IV's md-hmht row is measured (results/jdtvb/REPORT.md).
-//
-// Cost per scan: distinct tracks over the hypotheses are predicted and gated once (range-sorted
-// binary search), updates are shared by children that assign a track the same measurements;
-// Murty runs per cluster, which is tiny here (notes §5: ≤ 8 rows even at target crossings).
-// assignment = per_path ranks each parent's rows path by path for each of ≤ n partial events,
-// up to P·n rankings of smaller problems instead of one (measured at p_d 0.4: TET 1.1-1.2 times).
+// Background and our readings: docs/models/md-hmht.md
 #include <functional>
 #include <string>
 #include <string_view>

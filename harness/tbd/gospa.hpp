@@ -20,7 +20,7 @@
 // Computed exactly: the min over π is a rectangular linear assignment on the |X|×|Y| matrix of
 // d^(c)(x_i, y_j)^p (LinearAssignment, harness/core/linear_assignment.hpp; O(n_min² n_max)).
 // Gospa keeps its workspace, so repeated calls allocate nothing once it has grown.
-// The track-before-detect study (tbd-bp-model.md §5.1) reports it per time step with the
+// The track-before-detect study (docs/models/track-before-detect.md §5.1) reports it per time step with the
 // defaults below (its recommended c = 2 m, p = 1, α = 2) and also p = 2.
 #include <vector>
 

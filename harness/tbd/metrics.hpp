@@ -2,7 +2,7 @@
 // Per-step metrics of a track-before-detect run (tbd-bp-supplement, Figs 3-4; the letter's
 // Fig. 2): GOSPA (harness/tbd/gospa.hpp) between the true positions of the objects that exist
 // at step k and the positions a tracker reports at k, with its parts, in the options' order p
-// and, since the letter's order is not known (tbd-bp-model.md §5.1), also in order 2.
+// and, since the letter's order is not known (docs/models/track-before-detect.md §5.1), also in order 2.
 #include <string>
 #include <vector>
 
@@ -13,7 +13,7 @@
 namespace dabench {
 
 struct TbdMetricsOptions {
-  // Defaults (tbd-bp-model.md §5.1, inferred from supplement Fig. 3, where TBD-BP reads exactly
+  // Defaults (docs/models/track-before-detect.md §5.1, inferred from supplement Fig. 3, where TBD-BP reads exactly
   // 1.00 while one object is missed: (c^p/α)^{1/p} = 1).
   double gospa_cutoff = 2.0;  // c, m
   double gospa_order = 1.0;   // p (the second GOSPA column is always p = 2)

@@ -8,9 +8,9 @@
 // all independent, so p(z_j | y) = N(z_j; Σ_n r_n μ_j(x_n), C_ε + Σ_n r_n C_j(x_n)) and the cells
 // are conditionally independent given the objects (supplement eqs (1)-(9) rest on this).
 // An object's state is x = [p_x, p_y, v_x, v_y] (m, m/s) with a known amplitude γ
-// (tbd-bp-model.md §1.1: the supplement's state also carries γ, held at δ(γ − 60)).
+// (docs/models/track-before-detect.md §1.1: the supplement's state also carries γ, held at δ(γ − 60)).
 //
-//  - TbdSensor: the grid and μ_j, C_j, C_ε (tbd-bp-model.md §1.3, readings D1 and D2).
+//  - TbdSensor: the grid and μ_j, C_j, C_ε (docs/models/track-before-detect.md §1.3, readings D1 and D2).
 //  - TbdProblem: what a tracker may read — the frames and the model every tracker assumes
 //    (motion, survival, birth), so that trackers compared on a run share one model.
 //  - TbdTruth: what only metrics, tests and plots may read.
@@ -25,7 +25,7 @@
 
 namespace dabench {
 
-// How an object's signal enters a cell (tbd-bp-model.md §1.3; results/tbd/REPORT.md, "The
+// How an object's signal enters a cell (docs/models/track-before-detect.md §1.3; results/tbd/REPORT.md, "The
 // readings"). All are isotropic in R²: C_j(x) = c_j(x) I₂, with g_j(p) = exp(−‖c_j − p‖²/(2σ_h²)),
 // c_j the cell centre.
 //  - fluctuating (D1): μ_j(x) = 0, c_j(x) = σ_S² (γ/2) g_j(p) — a Swerling-type amplitude whose
@@ -97,13 +97,13 @@ struct TbdSensor {
 };
 
 // Nearly-constant-velocity motion in (p, v): x_k = A x_{k−1} + W a_k, A = [I₂ T·I₂; 0 I₂],
-// W = [T²/2·I₂; T·I₂], a_k ~ N(0, σ_a² I₂) (tbd-bp-model.md §2.3).
+// W = [T²/2·I₂; T·I₂], a_k ~ N(0, σ_a² I₂) (docs/models/track-before-detect.md §2.3).
 struct TbdMotion {
   double scan_interval = 1.0;            // T, s
   double driving_noise_variance = 0.01;  // σ_a², m²/s⁴
 };
 
-// What every tracker assumes beside the sensor and the motion (tbd-bp-model.md §2.3, §3.2).
+// What every tracker assumes beside the sensor and the motion (docs/models/track-before-detect.md §2.3, §3.2).
 struct TbdFilterModel {
   double survival_probability = 0.99;  // p_s (0 once an object's mean has left the region)
   double birth_mean = 0.01;            // μ_B, expected new objects per step, uniform over the region

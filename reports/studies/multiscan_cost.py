@@ -19,7 +19,7 @@ ALGORITHM2 = "cvs:gamma=0.95,solver=pdca"
 RUN_BY_ALGORITHM2 = {"msbp", "cvsh1:gamma=0.95"}  # every other cv* method runs the column-dual solver
 SINGLE_SWEEP = {"cvsh1:gamma=0.95"}  # one sweep per step by definition: never "converged"
 # The notes' prototype of the Newton solver, Newton iterations of one 8-target 12-scan CVS trial at
-# P = 300 / 1000 / 10 000 (../shared/multiscan-fast-solver.md, §1 and §3, [M]).
+# P = 300 / 1000 / 10 000 (docs/models/column-dual-newton.md, "Where the design came from").
 NOTES_PROTOTYPE_CVS_ITERATIONS = "163 / 150 / 156 Newton steps at 300 / 1000 / 10 000 particles"
 
 

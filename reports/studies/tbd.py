@@ -1,6 +1,6 @@
 """TBD-BP (Liang, Kropfreiter & Meyer, "Belief propagation for track-before-detect", IEEE SPL 2023)
-and its supplement (../shared/papers/tbd-bp-supplement.txt, figure pages in
-tbd-bp-supplement-figures/): the toy of Fig. 1, the single run of Figs 2-3, the letter's Fig. 2
+and its supplement (tbd-bp-supplement; sources and tags in docs/models/track-before-detect.md,
+section 0): the toy of Fig. 1, the single run of Figs 2-3, the letter's Fig. 2
 (averaged GOSPA over k) as the supplement quotes it, the runtime of Fig. 4, and our sensitivity
 runs (sigma_S^2, reading D2, particles, duplicate merging).
 

@@ -7,8 +7,8 @@ evidence (scenarios/tbd/tbd.hpp; harness/tbd/problem.hpp):
   s_j = sigma^2 + sum of their c_j. The log-likelihood of the readable cells is a function of
   the reading's parameters.
 - Fig. 2: the excess energy sum_j (|z_j|^2 - 2 sigma^2) of the isolated object, read in three
-  panels [F] (../shared/tbd-bp-model.md section 1.2): its mean, with the standard error of the
-  three readings, against each reading's expected energy sum_j (|mu_j|^2 + 2 c_j).
+  panels [F] (docs/models/track-before-detect.md section 1.2): its mean, with the standard error
+  of the three readings, against each reading's expected energy sum_j (|mu_j|^2 + 2 c_j).
 
 D3 (mu_j = (sqrt(rho gamma) g_j, 0), c_j = (1 - rho) sigma_S^2 gamma / 2 g_j) is fitted by
 maximising the Fig. 1 log-likelihood plus the Gaussian log-likelihood of the Fig. 2 energy over a

@@ -13,7 +13,7 @@ from reports.studies.tbd_data import ms
 from reports.studies.tbd_runs import BENCH, BP, RUNTIME
 
 # Supplement Fig. 4: mean runtime per step (s) over 400 runs at 1, 3, ..., 11 objects, read off the
-# bars (../shared/tbd-bp-model.md §5.3, 600 dpi).
+# bars (docs/models/track-before-detect.md §5.3, 600 dpi).
 FIG4_OBJECTS = (1, 3, 5, 7, 9, 11)
 FIG4_SECONDS = {1: ("0.069", "0.226", "0.442", "0.675", "0.919", "1.199"),
                 2: ("0.097", "0.336", "0.650", "1.010", "1.390", "1.801")}

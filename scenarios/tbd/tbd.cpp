@@ -16,7 +16,7 @@ namespace dabench {
 namespace {
 
 // Anchors of the crossing layout as fractions of the region, read from Fig. 2 [F] on [0, 32]²
-// (tbd-bp-model.md §2.2).
+// (docs/models/track-before-detect.md §2.2).
 constexpr double kCrossingAnchor[2] = {22.5 / 32.0, 18.5 / 32.0};
 constexpr double kSlowAnchor[2] = {12.7 / 32.0, 7.5 / 32.0};
 
@@ -26,7 +26,7 @@ constexpr int kToyObjects = 2;
 constexpr int kToySteps = 1;
 constexpr int kToyCells = 10;
 
-// Spreads σ_h² of D1 and D2 (tbd-bp-model.md §1.3); D3's is kSpreadD3 (tbd.hpp).
+// Spreads σ_h² of D1 and D2 (docs/models/track-before-detect.md §1.3); D3's is kSpreadD3 (tbd.hpp).
 constexpr double kSpreadD1 = 0.5;
 constexpr double kSpreadD2 = 1.5;
 

@@ -1,87 +1,44 @@
 #pragma once
 // Track-before-detect scenario "tbd": image frames for the TBD-BP letter (Liang, Kropfreiter &
-// Meyer, "A BP method for track-before-detect", IEEE SPL 2023) and its supplement
-// (papers/tbd-bp-supplement.txt). One draw is one Monte Carlo run. The letter's body (its
-// Sec. IV) could not be had, so most of this is reconstruction: tags as in
-// ../shared/tbd-bp-model.md §0 — [S] the supplement states it, [F] read from the supplement's
-// figures, [C] the IEMB authors' code does it, [R] a documented default no source states.
+// Meyer, "A BP method for track-before-detect", IEEE SPL 2023) and tbd-bp-supplement. One draw
+// is one Monte Carlo run: the truth (TbdTruth) and K frames of J cells (TbdProblem).
 //
-// Measurement model (harness/tbd/problem.hpp; tbd-bp-model.md §1):
-//  - Frame k holds one z_j ∈ R² per cell, z_j = Σ_n h_{j,n} + σ ε_j, h_{j,n} ~ N(μ_j(x_n), c_j I₂)
-//    over the objects n existing at k, ε_j ~ N(0, I₂), all independent ([S] eq (1), §1.1).
-//    Drawn as h = μ_j + √c_j · w with w ~ N(0, I₂) (TbdSensor::contribution).
-//  - Readings (§1.3, [R]): `signal` = d1 (fluctuating: μ_j = 0, c_j = σ_S² γ/2 g_j), d2
-//    (deterministic: μ_j = (γ ψ_j, 0), small c_j) or d3 (mixed: μ_j = (√(ργ) g_j, 0),
-//    c_j = (1 − ρ) σ_S² γ/2 g_j; problem.hpp). σ² = 1 [F] (the Rayleigh(1) background of
-//    Fig. 2, §1.2), γ = 60 [S] (toy example), σ_S² = 1 [S] (Fig. 2 caption; its meaning is [R]).
-//    σ_h² = 0.5 m² for d1 and 1.5 m² for d2 [R] (§1.3: calibrated to the ≈180 excess energy of
-//    an isolated object in Fig. 2 [F]; d1 gives E Σ_j ‖h_j‖² = σ_S² γ 2πσ_h²/Δ² = 188.5);
-//    d3's ρ = 0.66 and σ_h² = 0.58 m² maximise the likelihood of the readable cells of Fig. 1(a)
-//    (Rice densities given the toy's objects) times that of Fig. 2's excess energy [F]
-//    (results/tbd/REPORT.md shows the fit and its profile over ρ).
-//  - Support: an object's contribution is added to the cells whose centre lies within 8 σ_h of
-//    it; beyond, g_j < e^{−32} ≈ 1.3·10⁻¹⁴ (for d1 a standard deviation √(30 g) < 10⁻⁶ against
-//    the noise's 1).
-//  - Region [0, columns·Δ] × [0, rows·Δ]; default 32 × 32 cells of Δ = 1 m [F] (Fig. 2 axes).
+// Frames (model of harness/tbd/problem.hpp, supplement eq (1)): frame k holds per cell
+//   z_j = Σ_n h_{j,n} + σ ε_j,  h_{j,n} ~ N(μ_j(x_n), c_j(x_n) I₂),  ε_j ~ N(0, I₂),
+// over the objects existing at k, all independent; h = μ_j + √c_j · w (TbdSensor::contribution)
+// in the cells whose centre lies within kSupportRadius = 8 σ_h of the object (beyond, g_j <
+// e^{−32}). `signal` picks the reading of μ_j, c_j: d1, d2 or d3 (problem.hpp); `spread_variance`
+// = 0 takes the reading's own (0.5, 1.5, 0.58 m²). Region [0, columns·Δ] × [0, rows·Δ].
 //
-// Truth (positions in m, velocities in m/s, speeds in m per step = |v|·T, steps 1-based here;
-// 0-based in the arrays):
-//  - Motion: nearly constant velocity (TbdMotion), T = 1 s [R]. The truth's acceleration noise
-//    `truth_noise_variance` (1e-4 m²/s⁴ [R]) is separate from the filter's σ_a² =
-//    `driving_noise_variance` (0.01 [R], the Meyer-group default, §2.3): Fig. 2's tracks are
-//    nearly straight lines [F], while σ_a² = 0.01 over 25 steps moves the velocity by
-//    √(25·0.01) = ±0.5 m/s (the speeds themselves are 0.1–0.3 m/step) and the position by
-//    √(0.01·25³/3) ≈ ±7 m. At 1e-4 the crossing objects' velocities drift by ±0.05 m/s over 25
-//    steps; the slow object's by ±0.04 m/s over its 17 steps either side of m₀, comparable to
-//    its own speed, so its heading is not kept (in Fig. 2 the slow object moves 0.054, then
-//    0.023 m/step between the panels k = 14, 21, 27 [F], so it may wander too).
-//  - An object exists from its birth to its death step (inclusive) while inside the region;
-//    once it leaves it stops existing and never comes back (§2.3). Absent steps are NaN columns.
-//  - layout = crossing (the letter's Sec. IV as reconstructed in §2.2–2.3):
-//      object 0, slow: state at step m₀ = ⌈L₀/2⌉ has position ~ N(a₀, 0.5² I), a₀ = (12.7, 7.5)
-//        [F], uniform heading, speed 0.05 m/step [F]; present at steps 1..L₀, L₀ = 35 [F].
-//      objects 1..objects−1, crossing: state at step m = ⌈K/2⌉ (25 of 50, the centre of the
-//        window 20..30 where all of them exist; §2.3 writes k_mid = 24) has position
-//        ~ N(a, 0.5² I), a = (22.5, 18.5) [F], uniform heading, speed U[0.1, 0.3] m/step [F];
-//        birth step uniform in 1..B, death step uniform in D..K, B = 20 and D = 30 for K = 50
-//        [R]. From the middle step the state is propagated forward to the death step and
-//        backward (x_{k−1} = A⁻¹(x_k − W a)) to the birth step, as the IEMB generator
-//        Trajectory_cross.m does [C].
-//      Other K scale the windows: B = max(1, round(0.4 K)), D = max(B, round(0.6 K)),
-//      L₀ = round(0.7 K) (halves rounded up), so B ≤ m ≤ D. Another region scales the anchors
-//      a and a₀ with its size (they are 22.5/32, 18.5/32 and 12.7/32, 7.5/32 of its width and
-//      height); speeds and spreads stay in metres.
-//  - layout = persistent (the supplement's runtime study, §3 [S]: objects exist for all 50
-//    steps unless they leave): `objects` objects born at step 1, positions uniform over the
-//    middle half of the region in each coordinate ([8, 24]² for 32 m), uniform heading, speed
-//    U[0.1, 0.3] m/step, propagated to step K. With the defaults 88 % stay inside all 50 steps
-//    (0.879 over 40 000 objects; 0.900 with truth_noise_variance = 0; straight-line margins of
-//    4 / 10 m instead of 8 would give 0.77 / 0.95) [R].
-//  - layout = toy (supplement §1.3 [S]): 10 × 10 cells of 1 m, objects at (4, 4) and (5, 5) (cell
-//    corners) with zero velocity, one step. The problem carries the two POs' α as initial
-//    objects, N(p; p_n, 0.3 I₂) δ(v), existence 1, and birth_mean = 0 (no new POs). The option
-//    machinery cannot tell a key that was set from its default, so `objects`, `steps`,
-//    `columns`, `rows` and `cell_size` must each be its default or the toy's value (2, 1, 10,
-//    10, 1); anything else is an error. With `frame` = a file (scenarios/tbd/magnitude_frame.hpp;
-//    experiments/data/tbd-fig1a-frame.csv is the supplement's Fig. 1(a) digitised), that frame
-//    replaces the drawn one (z_j = (|z_j|, 0); its unread cells get `unread_magnitude`, by
-//    default the background's median σ√(2 ln 2)) and nothing is drawn; `frame` needs layout = toy.
-//
-// The problem's filter model (TbdFilterModel, §2.3 [R]): p_s = 0.99, μ_B = 0.01, birth velocity
-// s.d. 0.3 m/s — what trackers assume, not what drew the truth.
+// Truth: NCV motion with the truth's own `truth_noise_variance` (the filters get
+// `driving_noise_variance` through TbdMotion). An object exists from its birth to its death step
+// (inclusive) while inside the region; once outside it never returns. Absent steps are NaN.
+//  - crossing: object 0 slow (kSlowSpeed), drawn at step m₀ = ⌈L₀/2⌉ near kSlowAnchor (tbd.cpp),
+//    present at steps 1..L₀; objects 1.. cross: drawn at step ⌈K/2⌉ near kCrossingAnchor, speed
+//    U[kSpeedMin, kSpeedMax], birth U{1..B}, death U{D..K}; uniform headings, positions N(anchor,
+//    kPositionSd² I). Each is propagated forward to its death and backward (x_{k−1} =
+//    A⁻¹(x_k − W a)) to its birth. B, D, L₀: crossing_windows() (20, 30, 35 for K = 50).
+//    Anchors scale with the region; speeds and spreads stay in metres.
+//  - persistent: every object born at step 1, uniform in the middle half of the region
+//    (kPersistentMargin), propagated to step K.
+//  - toy: 10 × 10 cells, one step, objects at (4, 4) and (5, 5) at rest; the problem carries
+//    their α as initial objects, N(p; p_n, 0.3 I₂) δ(v), existence 1, and birth_mean = 0. Since
+//    the options cannot tell a set key from its default, `objects`, `steps`, `columns`, `rows`
+//    and `cell_size` must each be its default or the toy's value (2, 1, 10, 10, 1). `frame` (toy
+//    only; scenarios/tbd/magnitude_frame.hpp) replaces the drawn frame by a file's magnitudes.
 //
 // Draw order (stable; a change alters every run's numbers):
-//  1. Truth, per object in index order:
-//     crossing, object 0: normal, normal (position at m₀), uniform (heading); then per step
-//       forward from m₀ two normals (acceleration x, y), then per step backward two normals;
-//     crossing, objects ≥ 1: uniform (birth step), uniform (death step), normal, normal
-//       (position at m), uniform (heading), uniform (speed); then forward, then backward;
-//     persistent: uniform (x), uniform (y), uniform (heading), uniform (speed); then forward;
-//     toy: nothing.
-//  (toy with `frame`: no draws at all.)
-//     A propagation stops at the first step outside the region (no further draws).
+//  1. Truth, per object in index order. crossing, object 0: normal, normal (position),
+//     uniform (heading), then per step forward two normals (acceleration x, y), then backward;
+//     objects ≥ 1: uniform (birth), uniform (death), normal, normal, uniform (heading), uniform
+//     (speed), then forward, then backward. persistent: uniform (x), uniform (y), uniform
+//     (heading), uniform (speed), then forward. toy: nothing (with `frame`: no draws at all).
+//     A propagation stops at its first step outside the region (no further draws).
 //  2. Frames, per step: per cell j = 0..J−1 two normals (σ ε_j, x then y); then per existing
 //     object in index order, per cell of its support in increasing j, two normals (w).
+//
+// Background and our readings: docs/models/track-before-detect.md (§0 the tags [S], [F], [C],
+// [R] used below; §1 the readings D1–D3 and their calibration; §2 the layouts; §6 our readings).
 #include <string>
 #include <string_view>
 #include <vector>

@@ -1,5 +1,5 @@
 // Tests of the TBD-BP message passing between potential objects and data cells
-// (algorithms/tbd/cell_messages.hpp; tbd-bp-supplement eq (5); tbd-bp-model.md §3.3) with the
+// (algorithms/tbd/cell_messages.hpp; tbd-bp-supplement eq (5); docs/models/track-before-detect.md §3.3) with the
 // exact κ, against brute-force marginals computed here from the model of harness/tbd/problem.hpp
 // restated independently (tests/support/cell_messages.hpp):
 //  - On a tree (two POs sharing one cell), L = 2 gives the exact marginals of the joint

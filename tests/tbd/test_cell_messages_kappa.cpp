@@ -1,5 +1,5 @@
 // Tests of the TBD-BP message passing between potential objects and data cells
-// (algorithms/tbd/cell_messages.hpp; tbd-bp-supplement eqs (1)-(9); tbd-bp-model.md §3.3):
+// (algorithms/tbd/cell_messages.hpp; tbd-bp-supplement eqs (1)-(9); docs/models/track-before-detect.md §3.3):
 // the Gaussian κ̃ against expected values computed here from the model of
 // harness/tbd/problem.hpp restated independently (tests/support/cell_messages.hpp; the code
 // under test is never asked for an expected value), every PO's window the whole grid:

@@ -1,5 +1,5 @@
 // Tests of the TBD-BP message passing between potential objects and data cells
-// (algorithms/tbd/cell_messages.hpp; tbd-bp-model.md §3.3): a PO's messages where no other PO
+// (algorithms/tbd/cell_messages.hpp; docs/models/track-before-detect.md §3.3): a PO's messages where no other PO
 // of the same run speaks, against the model of harness/tbd/problem.hpp restated independently
 // (tests/support/cell_messages.hpp):
 //  - New POs (TbdBp's serial stage) are evaluated against the field, which add_to_field extends

@@ -1,5 +1,5 @@
 // Tests of the TBD-BP message passing between potential objects and data cells
-// (algorithms/tbd/cell_messages.hpp; tbd-bp-supplement eqs (5), (9); tbd-bp-model.md §3.3):
+// (algorithms/tbd/cell_messages.hpp; tbd-bp-supplement eqs (5), (9); docs/models/track-before-detect.md §3.3):
 // the per-cell totals of the Gaussian κ̃ at iteration 1, against the model of
 // harness/tbd/problem.hpp restated independently (tests/support/cell_messages.hpp):
 //  - The per-cell totals e, V equal the direct sums over the other POs' particles.

@@ -48,7 +48,7 @@ TEST_CASE("magnitude frame: the digitised Fig. 1(a) has the cells read off the f
   const auto at = [&](double x, double y) {  // the cell whose centre is (x, y)
     return frame.z.col(static_cast<int>(y - 0.5) * 10 + static_cast<int>(x - 0.5));
   };
-  // The four cells around object 1 at (4, 4), each 0.71 m from it (tbd-bp-model.md §1.2).
+  // The four cells around object 1 at (4, 4), each 0.71 m from it (docs/models/track-before-detect.md §1.2).
   CHECK(at(4.5, 4.5).x() == 12.3);  // shared with object 2 at (5, 5)
   CHECK(at(3.5, 3.5).x() == 6.1);
   CHECK(at(4.5, 3.5).x() == 6.2);

@@ -1,4 +1,4 @@
-// Tests of the TBD-BP tracker (algorithms/tbd/tbd_bp.hpp; tbd-bp-model.md §3) end to end on
+// Tests of the TBD-BP tracker (algorithms/tbd/tbd_bp.hpp; docs/models/track-before-detect.md §3) end to end on
 // small hand-made problems (no scenario): frames drawn here from the superpositional model of
 // harness/tbd/problem.hpp with our own RandomStream draws.
 //  - Pure noise with a tiny birth mean: no estimates (a Markov/Ville bound on the posterior

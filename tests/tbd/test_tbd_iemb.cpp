@@ -1,4 +1,4 @@
-// Tests of the TBD-IEMB tracker (algorithms/tbd/tbd_iemb.hpp; tbd-bp-model.md §4.2):
+// Tests of the TBD-IEMB tracker (algorithms/tbd/tbd_iemb.hpp; docs/models/track-before-detect.md §4.2):
 //  - its pieces against closed forms: sigma points reproduce (m, P); the cell model equals
 //    TbdSensor::contribution; for a linear measurement the IPLF is the Kalman update; the power
 //    measurement's Gaussian moments match simulated frames; the information exchange of one

@@ -1,4 +1,4 @@
-// Tests of the TBD-MB tracker (algorithms/tbd/tbd_mb.hpp, a reconstruction of tbd-bp-model.md
+// Tests of the TBD-MB tracker (algorithms/tbd/tbd_mb.hpp, a reconstruction of docs/models/track-before-detect.md
 // §4.1) on small hand-made problems (frames from tests/support/tbd_frames.hpp):
 //  - One Bernoulli and no births: the update is the exact Bayes update under the likelihood on
 //    the object's support, computed here from the model's equations on the same particles

@@ -1,4 +1,4 @@
-// Tests of the track-before-detect scenario "tbd" (scenarios/tbd/tbd.hpp; tbd-bp-model.md §1.3,
+// Tests of the track-before-detect scenario "tbd" (scenarios/tbd/tbd.hpp; docs/models/track-before-detect.md §1.3,
 // §2.3): cell statistics against their closed forms (Rayleigh background, every cell's χ²₂ law
 // given the truth, object energy, the d2 mean), the truth layouts, the model handed to trackers,
 // determinism and option errors. Fixed seeds; means are checked to 5 standard errors, KS
