@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The whole test suite, what CI runs on a clean checkout (README "Tests"): three builds, each with
+# The whole test suite, what CI runs on a clean checkout (docs/tests.md): three builds, each with
 # the tests it exists for:
 #  - release (build/, GCC, -O3): ctest (the Catch2 suite, the Python package's pytest, the
 #    reports' checks, the quick start), tests/scripts/mpi.sh (Open MPI on loopback),

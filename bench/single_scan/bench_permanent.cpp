@@ -4,7 +4,7 @@
 // every target gates every measurement; 0.5: half the pairs, at random). Weights are i.i.d.
 // exponential(3), the same pool for every method (seeded by the size and density). A refused
 // problem (skipped:work_limit, skipped:memory) is counted in `skipped`, and its time is that of
-// the refusal. Which method wins where: see the README's Algorithms section.
+// the refusal. Which method wins where: see docs/algorithms.md.
 #include <benchmark/benchmark.h>
 
 #include <cmath>

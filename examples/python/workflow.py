@@ -10,7 +10,7 @@ cell by cell in an editor that knows them):
 
     PYTHONPATH=build/python /usr/bin/python3 examples/python/workflow.py [--trials 200] [--out DIR]
 
-(or with the package installed by pip: README "Python"). Writes DIR (default
+(or with the package installed by pip: docs/python.md). Writes DIR (default
 results/python-workflow/): trials.csv, summary.csv, meta.json and workflow.png.
 """
 # %% 0. Imports and options

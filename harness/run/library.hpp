@@ -1,5 +1,5 @@
 #pragma once
-// dabench as a C++ library: the public entry point (README, "Using dabench as a C++ library").
+// dabench as a C++ library: the public entry point (docs/cpp-library.md).
 // Link dabench::dabench, which brings every registered algorithm and scenario; this header
 // names none of them.
 //

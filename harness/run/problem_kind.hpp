@@ -4,7 +4,7 @@
 // its trials.csv columns and per-item files, its primary error and time columns, what meta.json
 // adds, and its execution. One descriptor per built-in kind lives in harness/run/kinds/<kind>.cpp
 // beside its execution (<kind>_execution.{hpp,cpp}, which writes the rows of those files); a
-// program's own kind registers with DABENCH_REGISTER_PROBLEM_KIND (README "Adding a kind"). The
+// program's own kind registers with DABENCH_REGISTER_PROBLEM_KIND (docs/extending.md, "Adding a kind"). The
 // planner, the runner, merge, meta.json, compare's defaults, schedule, `dabench list` and the
 // Python catalogue loop over problem_kinds() and switch on nothing.
 #include <memory>

@@ -1,5 +1,5 @@
 #pragma once
-// meta.json of a run folder (README "Result files"): what was run — the plan, its fingerprint,
+// meta.json of a run folder (docs/result-files.md): what was run — the plan, its fingerprint,
 // the build — and how it ran. `dabench run` writes it at the start, while running and at the
 // end; `dabench merge` writes the merged run's from its shards' records.
 #include <cmath>

@@ -1,6 +1,6 @@
 """dabench from Python: single-scan marginals from numpy arrays, runs of experiment files as
 pandas DataFrames, and Python functions compared with every built-in algorithm on identical
-trials. See the README's "Python" section.
+trials. See docs/python.md.
 
     import numpy as np, dabench
     psi = np.array([[2.0, 0.5, 0.0], [1.0, 3.0, 0.2]])     # ψ_i(j): targets × measurements

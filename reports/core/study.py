@@ -65,6 +65,7 @@ class Study:
     checks: object  # function(Report) -> None
     digest: object = None  # function(root) -> [files written]: digests of large per-trial files
     lint: bool = True  # lint the template's prose for numbers (not for the README)
+    pages: tuple = ()  # more (template, file) pairs rendered from the same checks (the README's docs pages)
 
 
 class Report:

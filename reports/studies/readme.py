@@ -1,7 +1,8 @@
-"""The measured numbers of the top-level README: the quick start's BP error against the BP
-paper's statement, the cost of the multi-scan paper's Algorithm 2 against the column-dual Newton
-solver, and the Open MPI measurements (efficiency, the writer's capacity, and the core counts
-derived from them), each from committed runs."""
+"""The measured numbers of the top-level README and of its manual's pages (docs/, rendered from
+reports/templates/docs/): the quick start's BP error against the BP paper's statement, the cost of
+the multi-scan paper's Algorithm 2 against the column-dual Newton solver, the Open MPI
+measurements (efficiency, the writer's capacity, and the core counts derived from them) and the
+test command's times, each from committed runs and records."""
 
 import csv
 import io
@@ -24,7 +25,7 @@ FUZZ_LONG_RUNS = "tests/fuzz/long-runs.csv"  # written by FUZZ_RECORD=tests/fuzz
 FUZZ_TARGETS = ["experiment", "weights", "shard_meta", "spec"]  # tests/fuzz/CMakeLists.txt
 TEST_STEPS = "tests/timings/steps.csv"  # written by scripts/record_test_timings.py after scripts/test.sh
 TEST_CASES = "tests/timings/cases.csv"
-TEST_RUN_ORDER = ["before", "cold", "warm", "fast"]  # the README's columns; other labels follow
+TEST_RUN_ORDER = ["before", "cold", "warm", "fast"]  # the columns of docs/tests.md's table; other labels follow
 
 RUNS = [Run(QUICKSTART, "./build/dabench run experiments/quickstart.ini --out results/quickstart --force",
             "the quick start's reference run")]
@@ -57,7 +58,7 @@ for _name, _threads in SCHEDULE_RUNS.items():
                     f"./build/dabench run experiments/multiscan-fig3.ini --trials 8 {_threads} --force "
                     f"--out results/cluster/schedule-fig3-8-{_name}"
                     + (f" --costs-from {CLUSTER}/schedule-fig3-8-threads1" if _name.endswith("costs-from") else "")))
-# The committed studies whose wall time the README predicts for 16, 64 and 256 workers.
+# The committed studies whose wall time docs/clusters.md predicts for 16, 64 and 256 workers.
 SCHEDULE_STUDIES = [
     ("quick start", QUICKSTART), ("BP paper, experiment 1", "results/bp-paper/exp1"),
     ("BP paper, experiment 2", "results/bp-paper/exp2"), ("BP paper, experiment 3", "results/bp-paper/exp3"),
@@ -188,7 +189,7 @@ def cluster(report):
 
 
 def study_wall_times(report):
-    """Wall time of the committed runs the README's experiment table mentions (from meta.json)."""
+    """Wall time of the committed runs the experiment table of docs/experiment-files.md mentions (from meta.json)."""
     for name, folder in (("jdtvb_table4", "results/jdtvb/table4"), ("multiscan", None)):
         if folder:
             report.value(f"wall.{name}", markdown.duration(data.read_meta(report.root, folder)["wall_seconds"]))
@@ -301,7 +302,7 @@ def schedule_csv(report, folder, workers, trials=None):
     candidates = [Path(report.root) / "build" / "dabench", Path(__file__).resolve().parents[2] / "build" / "dabench"]
     program = next((c for c in candidates if c.is_file()), None)
     if program is None:
-        raise data.DataError(f"{candidates[-1]}: not built (bash scripts/build.sh): the README's schedule table runs it")
+        raise data.DataError(f"{candidates[-1]}: not built (bash scripts/build.sh): the schedule table of docs/clusters.md runs it")
     command = [str(program), "schedule", folder, "--format", "csv", "--workers", ",".join(map(str, workers))]
     if trials:
         command += ["--trials", str(trials)]
@@ -361,5 +362,10 @@ def checks(report):
     test_timings(report)
 
 
+# The manual's pages (docs/), rendered from the same checks as the README, the front page.
+DOCS_PAGES = ("layout", "command-line", "clusters", "experiment-files", "result-files", "extending", "cpp-library",
+              "python", "tests", "benchmarks", "algorithms")
+
 STUDY = Study(name="readme", report="README.md", template="reports/templates/README.md", runs=RUNS, steps=STEPS,
-              checks=checks, lint=False)
+              checks=checks, lint=False,
+              pages=tuple((f"reports/templates/docs/{page}.md", f"docs/{page}.md") for page in DOCS_PAGES))

@@ -1,4 +1,4 @@
-"""The README's test-timing tables (reports/studies/readme.py, test_timings) from recorded runs:
+"""The test-timing tables of docs/tests.md (reports/studies/readme.py, test_timings) from recorded runs:
 each run's floor is its steps' CPU time over its cores, the cold run's compile time is the sum of
 its build steps, and a run without CPU times (the sequential script's) has no floor."""
 

@@ -1,4 +1,4 @@
-// README "Adding a kind": the example kind of tests/support/example_kind.cpp (one file: problem,
+// docs/extending.md, "Adding a kind": the example kind of tests/support/example_kind.cpp (one file: problem,
 // estimators, scenario, execution, descriptor), built into the program dabench_example_kind, runs
 // through `dabench list`, `run` (any thread count, the same rows), `run --shard` and `merge`
 // (the whole run's rows), `compare` (the kind's error and time columns by default) and `schedule`

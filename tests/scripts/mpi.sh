@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Open MPI runs (README "Running on a cluster: Open MPI"), on loopback:
+# Open MPI runs (docs/clusters.md, "Running on a cluster: Open MPI"), on loopback:
 #  - a small experiment of each problem kind under `mpirun -np 2` (1 thread per rank) and
 #    `-np 3` (2 threads per rank) writes the files of a single-process run (scripts/same_results.py:
 #    every CSV field but the timings; meta.json records ranks, threads per rank and hosts);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Python package as a pip user installs it (README "Python"): a virtual environment on the
+# The Python package as a pip user installs it (docs/python.md): a virtual environment on the
 # system's numpy, `pip install --no-build-isolation --no-index .` (offline), then, from another
 # directory, `import dabench` at the project's version solving a problem as the build's package
 # does; `pip uninstall dabench` removes it. The extension comes from BUILD (default ./build,

@@ -1,4 +1,4 @@
-// README "Adding a scenario": its example scenario, compiled here as written there (registered in
+// docs/extending.md, "Adding a scenario": its example scenario, compiled here as written there (registered in
 // the test binary alone, as example-uniform), run through `dabench run`'s code path
 // (run_experiment) against the exact reference: the documented columns and sweep, exact
 // methods that agree to 1e-12 and BP that does not on these loopy problems, the draw
@@ -21,7 +21,7 @@ using namespace dabench::test::cli;
 
 namespace {
 
-// ---- the README's example (README.md, "Adding a scenario") ------------------------------------
+// ---- the documented example (docs/extending.md, "Adding a scenario") ------------------------
 struct UniformOptions {
   int targets = 4;        // n
   int measurements = 4;   // m
@@ -75,7 +75,7 @@ const char* const kExperiment =
 
 }  // namespace
 
-TEST_CASE("adding a scenario: the README's example runs as an experiment", "[run][scenario]") {
+TEST_CASE("adding a scenario: the documented example runs as an experiment", "[run][scenario]") {
   TempDir dir;
   dir.write("u.ini", kExperiment);
   const RunOutcome outcome = run_in(dir, "u.ini", "U", 2);
