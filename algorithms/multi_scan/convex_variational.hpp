@@ -3,56 +3,41 @@
 // Williams & Lau, "Multiple scan data association by convex variational inference"
 // (multiscan-convex-variational), Sec. III and Appendices B–C. msbp and cvsh1 run it; cv, cvs,
 // cvh and cvsh run it under `solver=pdca`, as the validator of their default column-dual solver
-// (column_dual_newton.hpp: the same minimiser of (63); the two timed on the same trials by
-// bearings_trial/cvs_newton, cvs_pdca, cv_newton, cv_pdca in bench/multi_scan/bench_multi_scan.cpp,
-// and in results/multiscan/REPORT.md). See convex_variational_variants.hpp.
+// (column_dual_newton.hpp: the same minimiser of (63)). See convex_variational_variants.hpp.
 //
 // Objective (63), with per-scan coefficients γ_t' (concave terms) and β_t' (false alarms):
 //   F = −Σ_i {H(A^i) + E log ψ^i} − Σ_t' Σ_i {H(a_t'|A^i) + E log ψ^i_t'}
 //       + Σ_t' β_t' Σ_j q^{0,j} log q^{0,j} − Σ_t' γ_t' Σ_{i,j} (1 − q^{i,j}) log(1 − q^{i,j}),
 // split as f + Σ_t' (h_{t',1} + h_{t',2}) (65)–(68) with the κ weights of Lemma 4, eqs (69)–(73)
-// (each part convex when η = 1 − Σγ_t' > 0: Theorem 2 guarantees convergence), or the heuristic
-// weights of eqs (93)–(95) (κ_f = 1, κ_{t',1,A} = −1, others 0: faster, not guaranteed).
+// (convergent when η = 1 − Σγ_t' > 0, Theorem 2), or the heuristic weights of eqs (93)–(95).
 //
-// One sweep visits the scans newest → oldest → newest (a backward–forward sweep); at each scan
-// block (t',1) then block (t',2):
+// One sweep visits the scans newest → oldest → newest; at each scan block (t',1), then (t',2):
 //   (t',1), Lemma 5: μ(A) = Σ_{τ≠t'} λ_{τ,1,A} + Σ_τ λ_{τ,2,A}, μ_t' = λ_{t',2,t'};
 //     φ = log ψ − μ (76), φ_t' = log ψ_t' − μ_t' (77), K1 = κ_{f,t'} + κ_{t',1,t'},
 //     φ̃(a) = log Σ_A exp{(φ(A) + φ_t'(A,a))/K1} (78); the single-scan problem (79) with
-//     w^{i,j} = exp φ̃(j), α = 1, β̃ = β/K1, γ̃ = γ/K1 is solved by fractional BP (Algorithm 1,
-//     FractionalBpKernel); then q_t'(A,a) = q(a) exp{(φ + φ_t')/K1 − φ̃(a)} (75: the
-//     conditional of Lemma 2), q(A) = Σ_a q_t'(A,a) (82), λ by (80)–(81).
+//     w^{i,j} = exp φ̃(j), α = 1, β̃ = β/K1, γ̃ = γ/K1 is solved by Algorithm 1
+//     (FractionalBpKernel); q_t'(A,a) = q(a) exp{(φ + φ_t')/K1 − φ̃(a)} (75),
+//     q(A) = Σ_a q_t'(A,a) (82), λ by (80)–(81).
 //   (t',2), Lemma 6: μ(A) = Σ_τ λ_{τ,1,A} + Σ_{τ≠t'} λ_{τ,2,A}, μ_t' = λ_{t',1,t'};
 //     K2 = κ_{f,t'} + κ_{t',2,t'}, φ̃(A) = K2 log Σ_a exp{φ_t'(A,a)/K2} (88),
 //     q(A) ∝ exp{(φ + φ̃)/(κ_{f,A} + κ_{f,t'} + κ_{t',2,A} + κ_{t',2,t'})} (84),
 //     q_t'(A,a) = q(A) exp{(φ_t' − φ̃(A))/K2} (85), λ by (89)–(90).
 // Dual updates, (54): λ_A = φ − κ_{f,A} log q(A), λ_t' = φ_t' − κ_{f,t'} log q_t'(A,a) (the
 // additive constants of (80)–(81) change no belief and are dropped).
-// Stopping: after a sweep, the largest change of any λ entry (log units) below `tolerance`, or
-// the beliefs settled: with d_k the largest change of any q^i(A) or q^{i,j}_t' over sweep k and
-// ρ = d_k / d_{k−1} the observed linear rate, the distance to the limit d_k ρ/(1 − ρ) below
-// `belief_tolerance` (the λ rule alone asks more than the beliefs need: λ entries are logs and
-// move ~1e4 times more than the probabilities in our runs); or `max_sweeps` sweeps (then
-// converged = false). The ascent itself is slow with the Lemma-4 weights: κ_f = η/(|S|+1) is
-// the only strongly convex part, and the observed rate per sweep is ≈ 1 − O(κ_f) (0.983 for
-// cvs, γ = 0.95, on 2 scans, κ_f = 0.017; κ_f = 0.004 on 12 scans), so each decade of accuracy
-// costs hundreds to thousands of sweeps. That is intrinsic to Algorithm 2 with these weights,
-// not to the stopping rule.
+// Stopping: the largest λ change of a sweep below `tolerance`, or the beliefs' estimated
+// distance to their limit below `belief_tolerance`, or `max_sweeps` sweeps (converged = false).
 //
-// Log domain throughout: particle weights and the 1/K scalings (K1 ≈ 0.008 for a past scan of
-// CVS with 12 scans) put exponents far outside double range, so every quantity is a logarithm
-// and sums are log-sum-exp. Exact zeros of ψ stay −∞ (their λ is kept at 0). Two floors keep
-// the logarithms finite where a probability underflows but is not structurally zero: the
-// weights w^{i,j} passed to Algorithm 1 are scaled by their row maximum (which leaves (79)
-// unchanged) and floored at e^{−600}; its outputs q^{i,j}, q^{0,j} at DBL_MIN. The floors move a
-// probability below 1e−260 and change no belief visibly. A hypothesis with ψ^i(A) = 0 or an
-// all-zero factor row in some scan has probability 0 in every feasible joint event and is
-// removed (log ψ^i(A) = −∞).
+// Invariants: every quantity is a logarithm and sums are log-sum-exp (the 1/K scalings put
+// exponents outside double range). Exact zeros of ψ stay −∞, with λ = 0 there; a hypothesis
+// with ψ^i(A) = 0 or an all-zero factor row in some scan is removed (log ψ^i(A) = −∞).
+// Algorithm 1's weights are floored at e^{−600}·min(row maximum, 1), its outputs at DBL_MIN.
 //
 // Sequential use (Sec. III-D): scans are appended one at a time; reweight() changes every
 // scan's (γ_t', β_t') and, for scans solved before, modifies the factors by Theorem 3, eq (91):
 //   log ψ̄_t'(A, j) = log ψ_t'(A, j) + Δγ [1 + log(1 − q^{i,j})] − Δβ [1 + log q^{0,j}], j > 0,
 // so that the previous solution is the solution of the reweighted problem.
+// Background (κ values, warm starts, stopping rules, why the ascent is slow, floors):
+// docs/algorithms/multi-scan.md#algorithm-2-and-the-convex-family
 #include <vector>
 
 #include "algorithms/single_scan/fractional_bp.hpp"

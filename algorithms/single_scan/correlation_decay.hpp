@@ -7,62 +7,31 @@
 //   Φ(T, M, j, t) = 1 / (1 + Σ_{i∈T} ψ_i(j) Φ(T, M−{j}, i, t−1))        measurement j ∈ M (41)
 //   Φ(·, ·, ·, 0) = 1
 //
-// T and M are the targets and measurements still in the recursion: a node leaves the graph
-// when the recursion passes through it, so the recursion runs over the self-avoiding walks of
-// the gating graph (the computation tree of Bayati, Gamarnik, Katz, Nair & Tetali, STOC 2007,
-// ref [60], whose recursion for the monomer-dimer model this is, with edge activities ψ_i(j)).
-// Without truncation Φ(T, M, v) is the exact probability that node v is unassigned in the
-// problem restricted to T ∪ M, because Z(G) = Z(G−v) + Σ_u ψ_vu Z(G−v−u).
+// T and M are the nodes still present: the recursion runs over the self-avoiding walks of the
+// gating graph (Bayati et al.'s computation tree for the monomer-dimer model, ref [60]), and
+// untruncated Φ(T, M, v) is the exact probability that v is unassigned within T ∪ M.
+// Marginals of target i, with s_i = 1 + Σ_j ψ_i(j) Φ_j and Φ_j = Φ(T−{i}, M, j, t−1):
+//   p(a_i = 0) = 1/s_i (= Φ_i by 40),   p(a_i = j) = ψ_i(j) Φ_j / s_i,
+// so every row sums to one to rounding, at every depth.
 //
-// Marginals of target i (all targets and measurements present, Φ_i = Φ(T, M, i, t)):
-//   p(a_i = 0) = Φ_i,   p(a_i = j) = ψ_i(j) Φ(T−{i}, M, j, t−1) Φ_i.
-// Normalisation: with s_i = 1 + Σ_j ψ_i(j) Φ(T−{i}, M, j, t−1) we have Φ_i = 1/s_i by (40),
-// so the row sums to Φ_i·s_i = 1 at EVERY depth, not only at full depth; dividing the row by
-// its sum is the identity in exact arithmetic. We write p(a_i = 0) = 1/s_i and
-// p(a_i = j) = ψ_i(j)Φ_j / s_i, i.e. the terms of s_i divided by their sum (the normalised
-// form), so rows sum to one to rounding (tests check this against a literal unnormalised
-// transcription of (40)-(41)).
+// Depth t counts recursion levels, one node (alternately a target and a measurement) per level:
+// depth 1 is PDA, and depth ≥ n + m is exact. For t ≥ |G| − 1 (G = nodes still present) the
+// recursion does the same operations for every such t, so t is clamped to |G| − 1 (bit-identical).
+// Sums run over gated pairs only (ψ > 0, ψ = w_ij/(w_i0 w_0j)), so each cluster of the gating
+// graph (AssociationGraph) is solved on its own, with local nodes: targets 0..n_c−1, then
+// measurements.
 //
-// Readings chosen (Oh's paper was not among the sources we could search; Bayati et al. was,
-// by abstract only, so the reading rests on (40)-(41) as printed and on ref [60]'s recursion):
-//  - Depth t counts recursion levels, one node (alternately a target and a measurement) per
-//    level, as in (40)-(41) where each step lowers t by one, and as in Bayati et al.'s
-//    Φ(G, v, r). Depth 1 is PDA: p(a_i = 0) = 1/(1 + Σ_j ψ_i(j)). The paper's experiments use
-//    t ∈ {3, 5, 7}; depth 3 from a target reaches its measurements, their other targets and
-//    those targets' other measurements. Check against the paper's Fig. 6 (our run: 2×3 grid
-//    baseline, 200 trials per spacing, mean max error vs exact): spacing 0: BP 0.012, t = 3 /
-//    5 / 7: 0.20 / 0.095 / 0.031; spacing 2: BP 0.011, t = 7: 0.006 — BP beats t = 3, 5, and
-//    t = 7 wins only at wider spacing, as the paper reports. Counting one target-measurement
-//    pair per level would make t = 7 exact on nearly every 2×3 problem, contradicting it.
-//  - Exactness: Φ(G, v, t) is exact once t is at least the longest self-avoiding path from v
-//    (in edges), in particular once t ≥ (nodes of v's cluster) − 1; hence depth ≥ n + m is
-//    exact. For t ≥ |G| − 1 (G = nodes still present) the recursion performs the same
-//    operations for every such t, so t is clamped to |G| − 1 (bit-identical results; lets
-//    equal states share memo entries and bounds the work of huge depths).
-//  - Sums run over gated pairs only (ψ > 0, after the ψ_i(0) = 1 normalisation of side
-//    weights ψ = w_ij/(w_i0 w_0j)), so the recursion stays inside a cluster (connected
-//    component of the gating graph, AssociationGraph); each cluster is solved on its own with
-//    local node numbers, targets 0..n_c−1 then measurements.
-//  - Odd depths under-estimate p(a_i = 0) and even depths over-estimate it, the odd ones
-//    increasing and the even ones decreasing with t (1/(1 + Σ ψx) is decreasing in x): tests.
+// Memoisation (option memo, default on): Φ depends only on (set of nodes removed so far, node,
+// clamped t), so a table keyed on exactly that is sound and memo on/off results are bit-identical.
+// Keys: one 64-bit word for clusters of up to 64 nodes, else ⌈nodes/64⌉ words. Entries are kept
+// only where reuse is possible: at least 3 nodes removed and remaining depth ≥ 2. The table is
+// cleared per cluster by a generation stamp, grows by doubling, and stops accepting entries at
+// memo_entries.
 //
-// Memoisation (option memo, default on): Φ depends only on the set of nodes removed so far
-// (the path from the root, in any order and from any root), the node and the remaining depth,
-// so a table keyed on exactly (removed set as a bitset, node, clamped t) is sound; a hit
-// returns the value computed by the very same operations, so memo on/off results are
-// bit-identical. Keys are one 64-bit word for clusters of up to 64 nodes, else ⌈nodes/64⌉
-// words (the tag holds node and t; within one solve t is a function of |removed| anyway). Entries are kept only where reuse is possible: at least 3 nodes removed (the first
-// level at which two different walks, e.g. from two roots, remove the same set) and remaining
-// depth ≥ 2 (depth-1 values cost a few additions). The table is cleared per cluster by a
-// generation stamp, grows by doubling, and stops accepting entries at memo_entries.
-//
-// What the memo saves (evaluations and time, with and without it): solve_cd_grid/cd7_2x3_s0
-// against cd7_nomemo_2x3_s0, and at spacing 3, in bench/single_scan/bench_cd.cpp (counter evals).
-//
-// Work limit: `budget` bounds the evaluations of (40)/(41) with t ≥ 1 per problem (roots and
-// memo hits count, the constant leaves Φ(·,·,·,0) = 1 do not). Past it the solve stops and reports
-// skipped:budget instead of running for hours (CD's time against BP's on the paper's grids:
-// results/bp-paper/REPORT.md, claims 6d-6f).
+// Work limit: `budget` bounds the evaluations of (40)/(41) with t ≥ 1 per problem (roots and memo
+// hits count, the constant leaves Φ(·,·,·,0) = 1 do not); past it the solve stops and reports
+// skipped:budget.
+// Background and our readings: docs/algorithms/single-scan.md, "Correlation decay".
 #include <cstdint>
 #include <string>
 #include <string_view>

@@ -1,89 +1,40 @@
 #pragma once
 // Efficient hypothesis management: exact marginal association probabilities p(a_i = j) of the
 // single-scan model of Williams & Lau 2014 (bp-marginal-association, eqs 9-13), computed on a
-// net of partial hypotheses that exploits mutual exclusion:
-//   EHM  — S. Maskell, M. Briers, R. Wright, "Fast mutual exclusion", Proc. SPIE 5428 (2004);
-//   EHM2 — P. Horridge, S. Maskell, "Real-time tracking of hundreds of targets with efficient
-//          exact JPDAF implementation", FUSION 2006.
-// Williams & Lau (Sec. IV-A) describe EHM-2 as a junction tree whose hyper-node alphabet is
-// reduced to the states that respect mutual exclusion; the marginals equal those of eq (12).
+// net of partial hypotheses that exploits mutual exclusion (EHM: Maskell, Briers & Wright, Proc.
+// SPIE 5428, 2004; EHM2: Horridge & Maskell, FUSION 2006). The marginals equal those of eq (12).
 //
 // Method (per cluster of the gating graph; clusters are independent, eq 9 factorises):
-//  1. Targets are put in an order (`order`, below) and a tree of tracks is built on it. With
-//     `tree = false` the tree is the path of the order (EHM: one net layer per target). With
-//     `tree = true` (EHM2) it is built from the last target back to the first: target t
-//     becomes the parent of every subtree built so far whose gated measurements intersect t's
-//     gate, so targets whose futures are independent given the measurements used above them
-//     lie in separate branches.
-//  2. D(t) = measurements gated by the subtree of t. The key space of t is
-//     K(t) = D(t) ∩ (measurements gated by ancestors of t). A net node of layer t is
-//     identified by S ⊆ K(t), the measurements used by t's ancestors that are still relevant
-//     to t's subtree; it is stored as a bitset over K(t) (std::uint64_t words). Only
-//     measurements gated by ≥ 2 targets get bits: a measurement gated by one target only is
-//     folded with the missed detection into one choice of weight 1 + Σ_excl ψ_t(j).
-//  3. Backward (bottom-up): β_t(S) = Σ_{j ∈ {0} ∪ gate(t), j ∉ S} ψ_t(j) Π_{c child of t}
-//     β_c((S ∪ {j}) ∩ K(c)) — the summed weight of every consistent completion of the subtree
-//     of t given S (EHM2's "remaining weight" of a node).
-//     Forward (top-down): α_root(∅) = 1, α_c(S') = Σ_{S, j → S'} α_t(S) ψ_t(j)
-//     Π_{c' ≠ c} β_c'(…) — the summed weight of everything outside the subtree of c that leads
-//     to S'. Then p(a_t = j) ∝ Σ_{S ∈ layer t} α_t(S) ψ_t(j) Π_c β_c((S ∪ {j}) ∩ K(c)), which
-//     is eq (12) with Z the row sum (every row's sum equals Z).
-//  4. ψ_t(j) is the normalised weight w_tj / (w_t0 w_0j) (SingleScanProblem::normalized_weight),
-//     each target's row divided by max(1, max_j ψ_t(j)), and every layer of α and of β is
-//     divided by its largest entry (its log is kept per layer: stats().log_partition is log Z of
-//     the normalised problem), so nothing under- or overflows with hundreds of targets. The
-//     per-layer factors are common to all terms of a row, so they cancel in the marginals.
-//     Weights spanning more than double's range within one event can still underflow (one
-//     ψ = 1e300 gated by three targets, the others' misses 1e-300 after the row scale): each
-//     layer carries a bound on what underflow can have taken from its entries, and a row
-//     whose sum is not 1e12 times its bound is refused (skipped:numerical), never written.
-//
-// Readings / choices:
-//  - `order` (an int, since options are numeric). 1 = greedy minimum frontier: repeatedly take
-//    the target whose addition leaves the fewest shared measurements gated both by a processed
-//    and by an unprocessed target (ties: most already-touched gate measurements, then lowest
-//    index) — a pathwidth heuristic on the gating graph that sweeps grids along their long axis.
-//    2 = Cuthill–McKee breadth-first order from a pseudo-peripheral target of the target
-//    adjacency graph (targets adjacent when they share a measurement). 3 = input order.
-//    0 (default) = auto: the cheapest, by Σ_k 2^(frontier after k targets), of the BFS order,
-//    greedy orders started by their own rule and from both ends of the BFS diameter, and the
-//    input order; choosing costs O(K²·gate) per cluster, negligible next to the net.
-//  - `threshold` zeroes normalised weights below it before anything else (as `exact:threshold`).
-//  - A target that must be detected (a zero missed-detection weight, Pd = 1) has a miss of weight
-//    0: its choice 0 holds its exclusive measurements only. A problem where no event gives every
-//    such target a measurement is skipped:infeasible (must_detect_feasible), before any net.
-//  - Work limit: `max_nodes` caps the net nodes of one solve, and one net's stored edges may be
-//    at most 16 × max_nodes. Both are enforced before anything is built, by an upper bound on
-//    every layer from the tree and the key spaces (net_bound, ehm_bound.cpp: the least of 2^|K|,
-//    the subsets of K no larger than the number of ancestors gating K, the product over those
-//    ancestors of 1 + their measurements in K (also split into measurements one ancestor gates
-//    and those several do), and the parent's layer times its choices). A
-//    solve whose bound passes a cap is refused at once as skipped:work_estimate; a solve within
-//    it cannot pass the cap, so none spends its budget and then gives up. With several clusters
-//    of two or more targets, all are bounded before the first is built. The bound is exact on
-//    complete (dense) problems and 1.00-1.28× the nodes built (median 1.03) on the 84 of
-//    bp-marginal-association experiment 3's 120 problems at 5×5…10×10 (trials 0-19) that fit
-//    the default cap: a refused net may still fit, so raise max_nodes to try.
-//    A key space wider than 512 bits reports skipped:key_width. Memory is about 16 bytes plus
-//    8 per key word per node, plus 4 bytes per (node, choice, child) edge: roughly 60 bytes a
-//    node on the grids (about 10 edges a node), 130 on complete problems (25), so at most about
-//    4.4 GB per solver at the default cap of 5e7 nodes (lower it when many threads solve large
-//    problems at once).
-//  - Layers whose key space has at most 22 bits are indexed by a direct-address table
-//    (key → node id, 16 MB, reset entry by entry after each layer); wider ones by an
-//    open-addressing hash table with generation-stamped slots. Node keys, weights and edges live
-//    in flat member vectors, so a solve allocates nothing once they have grown. Results are
-//    bit-identical across repeats (node ids follow insertion order, fixed by the problem).
-//  - Cost: a layer holds up to 2^|K(t)| nodes, and on the paper's grids nearly every subset of
-//    the frontier is reachable (Pd 0.6; at spacing 3 the gates have radius ≈ 5-7, so a
-//    measurement is gated by up to ~12 targets). On the benchmark's pools (default options),
-//    3×n grids have |K| ≤ 17, while n×n grids grow as 2^(c·n): 5×5 |K| ≤ 22 (all solved); at
-//    8×8 some and at 10×10 most problems exceed the default cap. Times, key widths and skips per
-//    grid: solve_grid_ehm in bench/single_scan/bench_ehm.cpp (counters median_us, max_us,
-//    max_bits, skipped); recorded in results/bp-paper/REPORT.md (Timing).
-//    A target sweep cannot do better on a 10-wide grid: the frontier is a band ~10 units wide,
-//    ~25 measurements. The EHM2 tree branches only where the remaining targets split into
-//    measurement-disjoint groups, which on dense grids is rare (it then equals plain EHM).
+//  1. Targets are put in an order (`order`) and a tree of tracks is built on it: with
+//     `tree = false` the path of the order (EHM); with `tree = true` (EHM2), built from the last
+//     target back, target t becomes the parent of every subtree so far that shares a gated
+//     measurement with t.
+//  2. D(t) = measurements gated by the subtree of t; key space K(t) = D(t) ∩ (measurements gated
+//     by ancestors of t). A node of layer t is a set S ⊆ K(t) of measurements used above t,
+//     stored as a bitset over K(t) (std::uint64_t words). Only measurements gated by ≥ 2 targets
+//     get bits; the others fold with the miss into choice 0, of weight 1 + Σ_excl ψ_t(j).
+//  3. Backward: β_t(S) = Σ_{j ∈ {0} ∪ gate(t), j ∉ S} ψ_t(j) Π_{c child of t} β_c((S ∪ {j}) ∩ K(c))
+//     Forward: α_root(∅) = 1, α_c(S') = Σ_{S, j → S'} α_t(S) ψ_t(j) Π_{c' ≠ c} β_c'(…). Then
+//     p(a_t = j) ∝ Σ_{S ∈ layer t} α_t(S) ψ_t(j) Π_c β_c((S ∪ {j}) ∩ K(c)): eq (12), every row
+//     summing to Z.
+//  4. ψ_t(j) = w_tj / (w_t0 w_0j) (SingleScanProblem::normalized_weight); each row is divided by
+//     max(1, max_j ψ_t(j)) and each layer of α and β by its largest entry (logs kept:
+//     stats().log_partition = log Z of the normalised problem). Each layer carries a bound on what
+//     underflow can have taken from it; a row whose sum is not 1e12 times its bound is refused
+//     (skipped:numerical), never written.
+// Options: `order` 0 = auto (the cheapest candidate by an estimate of its net), 1 = greedy minimum
+// frontier, 2 = Cuthill–McKee BFS, 3 = input order; `tree` as in 1; `threshold` zeroes normalised
+// weights below it first (as exact:threshold). A target that must be detected (w_i0 = 0) has a
+// miss of weight 0; a problem no event can satisfy is skipped:infeasible before any net.
+// Work limit: net_bound (ehm_bound.cpp) bounds every layer from the tree and the key spaces before
+// anything is built; a solve whose bound passes `max_nodes` nodes (summed over its clusters) or a
+// net whose edges pass 16 × max_nodes is refused at once as skipped:work_estimate, so no solve
+// spends its budget and then gives up. A key space over 512 bits is skipped:key_width.
+// Cost and memory: a layer holds up to 2^|K(t)| nodes; about 16 bytes plus 8 per key word per
+// node, plus 4 per (node, choice, child) edge. Layers with |K| ≤ 22 are indexed by a
+// direct-address table (16 MB), wider ones by a generation-stamped hash table; storage is flat and
+// reused, and results are bit-identical across repeats.
+// Background and our readings: docs/algorithms/single-scan.md, "EHM".
 #include <cstdint>
 #include <string>
 #include <string_view>

@@ -6,78 +6,35 @@
 //   ψ_c(a^i, a^i') = 0 if a^i = a^i' > 0, else 1                                          (38)
 //   E = {(i, i') : i ≠ i', ∃ j with ψ_i(j) ψ_i'(j) > 0}                                   (39)
 //
-// with the node potentials ψ_i thresholded first (associations whose weight is below τ are
-// removed; the paper's experiments use τ ∈ {1e-1, 1e-2, 1e-3}, and 1e-4 for the reference).
-// The target variable a^i ranges over {0} ∪ {j : weight_ij ≥ τ}. The paper ran libDAI's JTree;
-// this is a from-scratch implementation of the textbook algorithm (Koller & Friedman ch. 10;
-// Jensen's Hugin architecture) with one departure, the pruning of configurations that break
-// mutual exclusion (below), per cluster of the gating graph (AssociationGraph::find_clusters;
-// the joint factorises over clusters):
+// with associations whose weight (see threshold_on) is below τ removed first: a^i ranges over
+// {0} ∪ {j : weight_ij ≥ τ}. The textbook algorithm (Koller & Friedman ch. 10, Hugin passes),
+// written from scratch, per cluster of the gating graph (the joint factorises over clusters):
 //
-//  1. Elimination order by min-fill (fewest fill edges added), ties broken by min-weight (the
-//     product of the domain sizes of the clique the elimination creates), then by the lowest
-//     target index. The elimination cliques that are not contained in another are the maximal
-//     cliques of the triangulated graph. When these hold more than 2^16 entries in all, three
-//     more greedy orders are tried and the one with the fewest clique entries kept: min-fill
-//     with ties to the lowest index (libDAI JTree's default rule, so jt never needs more clique
-//     states than libDAI on the same graph), min-weight, and weighted min-fill (each fill edge
-//     weighted by the product of its two domain sizes).
-//  2. Clique tree: a maximum-weight spanning tree (Prim) of the cliques with weight = the number
-//     of shared variables; for the maximal cliques of a chordal graph every such tree has the
-//     running-intersection property. Disconnected parts are joined by empty separators.
-//  3. Memory budget: the dense clique, separator and scratch table sizes (Π of domain sizes, in
-//     doubles, 64-bit saturating arithmetic) are totalled BEFORE anything is allocated; above
-//     `memory_mb` the solve reports skipped:memory, as the paper's JT runs that "were unable to
-//     be completed due to the high memory requirements". The budget applies to one cluster at a
-//     time (tables are reused from cluster to cluster).
-//  4. Sum-product, Hugin style: collect (leaves to root: each clique's table is the product of
-//     its node potentials and its children's messages; its marginal on the separator is the
-//     message to the parent) and distribute (root to leaves: the child table is multiplied by
-//     new separator / old separator, with 0/0 = 0). Every message is scaled to max 1 and the
-//     log of the scale is accumulated, so log Z is available (log_partition()); a clique
-//     whose product would underflow is recomputed in the log domain. Where a separator entry
-//     collected from a child is near the subnormals (below 1e-290 of its largest) yet the parent
-//     sends it mass, underflow may have emptied it (every consistent separator state is positive
-//     in exact arithmetic: each target can miss), and the solve reports skipped:numerical rather
-//     than marginals that lost that mass (weights of 1e300 beside 1e30 in one cluster).
+//  1. Elimination order by min-fill, ties by min-weight, then lowest index. When the maximal
+//     cliques hold more than 2^16 entries in all, min-fill with index ties (libDAI JTree's rule),
+//     min-weight and weighted min-fill are tried too, and the order with the fewest entries kept.
+//  2. Clique tree: maximum-weight spanning tree (Prim, weight = shared variables), which has the
+//     running-intersection property; disconnected parts are joined by empty separators.
+//  3. Memory budget: the dense clique, separator and scratch tables (doubles, saturating 64-bit
+//     sizes) are totalled BEFORE anything is allocated; above `memory_mb` (per cluster) the solve
+//     reports skipped:memory.
+//  4. Sum-product, Hugin style: collect, then distribute (child × new/old separator, 0/0 = 0).
+//     Messages are scaled to max 1 with the log of the scale accumulated (log_partition()); a
+//     clique whose product would underflow is recomputed in the log domain; a separator state
+//     emptied by underflow that the parent sends mass to makes the solve skipped:numerical.
 //  5. Marginals of each target from the smallest clique containing it.
 //
 // Tables are dense with strides (first variable fastest), but every pass walks only the
-// consistent configurations of a clique (no two variables on the same measurement), by a
-// depth-first odometer that skips a measurement already taken: since ψ_c is 0/1, applying every
-// exclusion constraint in every clique changes nothing (ψ_c² = ψ_c), and the other entries are
-// exactly zero, never read. Each clique is visited twice (once per phase), each pass fusing the
-// products, the separator sums and the marginal sums. Entries outside the consistent set are
-// never written, so pages of a huge table that hold none are never touched.
-// This pruning is not part of a plain junction tree: libDAI's JTree (the paper's) and the
-// textbook passes multiply and sum every entry of every table, consistent or not. jt's tables
-// are as dense (so its memory, skipped:memory and clique-state counts compare with a plain
-// junction tree's on the same cliques), but its time counts only the consistent configurations,
-// a fraction of the entries that is smaller the more the clique's targets share measurements.
-// Wherever jt's time is set beside libDAI's (results/bp-paper/REPORT.md), it is this pruned
-// junction tree that is timed, not the paper's algorithm.
+// consistent configurations of a clique (no two variables on one measurement) by a depth-first
+// odometer: since ψ_c is 0/1 the other entries are exactly zero and are never read or written.
+// This pruning is not part of a plain junction tree (libDAI's JTree, the paper's): memory and
+// clique states compare with it, time does not.
 //
-// Readings (options.threshold_on), since the paper only says "thresholds applied to ψ_i(j)":
-//   0 (default) τ on ψ_i(j), the likelihood ratio of eq (11) (normalised weight w_ij/(w_i0 w_0j));
-//   1           τ on the Gaussian likelihood g_ij = ψ_ij λ_fa (1 − Pd) / Pd (needs problem.context;
-//               skipped:no_context without it);
-//   2           τ on the single-target PDA probability p_ij = ψ_ij / (1 + Σ_j' ψ_ij');
-//   3           τ on Pd g_ij / λ_fa = (1 − Pd) ψ_ij (needs problem.context).
-// With τ = 0 every reading keeps every ψ > 0, and jt equals `exact`.
-// Which reading did the paper use? Measured on the seven 2×3 panels of Fig. 6 (spacing 0..10,
-// 200 trials, experiments/jt-threshold-reading.ini), against the paper's three statements:
-//  - reading 0 (ψ): τ = 0.1 is worse than BP at 65 of 77 (panel, spacing) points (mean error
-//    0.012 vs BP 0.004) but better than BP at tight spacing in the high-ψ panels (baseline,
-//    Pd 0.9, r 0.1: e.g. 0.004 vs 0.012 at the baseline's spacing 0); τ = 0.01 and 0.001 are
-//    much better than BP wherever BP's error is ≥ 1e-3 (34/40 and 40/40 points better).
-//  - reading 2 (ψ/(1+Σψ)): τ = 0.1 is worse than BP at 77/77 points (3× worse at 75), but
-//    τ = 0.01 is worse than BP at 60/77 (23 of the 40 points where BP's error is ≥ 1e-3),
-//    contradicting "with 0.01 or 0.001 ... generally much better than BP"; and at τ = 0.1 its
-//    graphs are so sparse that 9×9 and 10×10 fit easily, contradicting the paper's memory failures.
-//  - reading 1 (g) removes nearly everything at τ = 0.1 (error ≈ 0.6) and is worse than BP at
-//    τ = 0.01 almost everywhere: ruled out. Reading 3 ((1−Pd)ψ) lies between 0 and 2.
-// No reading reproduces every statement; reading 0, the paper's literal wording ("thresholds
-// applied to ψ_i(j)"), reproduces two of three and stays the default.
+// threshold_on, since the paper only says "thresholds applied to ψ_i(j)": 0 (default) τ on ψ_i(j)
+// of eq (11); 1 on g_ij = ψ_ij λ_fa (1 − Pd) / Pd and 3 on (1 − Pd) ψ_ij (both need
+// problem.context, else skipped:no_context); 2 on p_ij = ψ_ij / (1 + Σ_j' ψ_ij'). With τ = 0 every
+// reading keeps every ψ > 0, and jt equals `exact`.
+// Background and our readings: docs/algorithms/single-scan.md, "Junction tree".
 #include <cstdint>
 #include <limits>
 #include <memory>

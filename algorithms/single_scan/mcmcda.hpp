@@ -1,13 +1,10 @@
 #pragma once
 // Single-scan Markov chain Monte Carlo data association (MCMCDA): S. Oh, S. Russell and
 // S. Sastry, "Markov chain Monte Carlo data association for multi-target tracking", IEEE
-// Trans. Automatic Control 54(3), 2009, single-scan algorithm — the Metropolis chain over
-// matchings of the gating graph that goes back to Jerrum & Sinclair's chain for weighted
-// (monomer-dimer) matchings ("Approximating the permanent", SIAM J. Comput. 18(6), 1989).
-// It estimates the marginals p(a_i = j) of Williams & Lau 2014 (bp-marginal-association),
-// eqs (9), (12), which compare it with BP in Sec. V (Fig. 6: 1e5, 1e6, 1e7 steps, started at
-// the MAP event, no burn-in; 1e7-step runs serve as reference, a second independent instance
-// estimating the reference's own error).
+// Trans. Automatic Control 54(3), 2009, single-scan algorithm — Jerrum & Sinclair's Metropolis
+// chain over the matchings of the gating graph ("Approximating the permanent", SIAM J. Comput.
+// 18(6), 1989). It estimates the marginals p(a_i = j) of Williams & Lau 2014
+// (bp-marginal-association), eqs (9), (12), which compare it with BP in Sec. V (Fig. 6).
 //
 // State: a matching ω of the gating graph G = (targets ∪ measurements, E = {(i, j): ψ_i(j) > 0}),
 // i.e. a feasible event of eq (9) (unmatched target = missed, unmatched measurement = false
@@ -22,27 +19,18 @@
 //     j matched to i' ≠ i, i unmatched      → switch    ω' = ω + e − (i', j)
 //     both matched elsewhere                → ω' = ω;
 //   accept ω' with probability min(1, π(ω')/π(ω)) (else ω' = ω).
-// The proposal is symmetric (each move is undone by picking the same edge, or the removed edge
-// for a switch), so π is stationary; the lazy half makes the chain aperiodic.
+// The proposal is symmetric, so π is stationary; the lazy half makes the chain aperiodic.
 //
-// Readings and implementation choices:
-//  - Initial state: the MAP event (algorithms/single_scan/map_association.hpp), as Williams & Lau did (by
-//    auction), so `burnin` defaults to 0.
-//  - Marginals = visit frequencies of the states X_{B+1}, ..., X_{B+N} after the burn-in B:
-//    every step counts, rejected and lazy ones included (the chain's empirical distribution).
-//    Counted as time spent per (target, state): a target's count is updated only when its state
-//    changes, so a step that changes nothing costs O(1); zero weights are never edges, so their
-//    probability is exactly 0.
-//  - One chain over the whole graph (the paper's chain), N steps; no per-cluster splitting.
-//  - Randomness: RandomStream(stream_seed(trial_key.seed, seed), trial_key.point,
-//    trial_key.trial) with stream_seed(s, S) = splitmix64(s ^ (0x9E3779B97F4A7C15 · (S + 1)))
-//    (Steele, Lea & Flood 2014 finaliser), so output is a function of (problem, trial, options)
-//    and runs with different `seed` options are independent instances.
-//  - Each step draws one 64-bit word: bit 63 decides the lazy half; the low 32 bits choose the
-//    edge by Lemire's multiply-shift with rejection (exactly uniform, rejection probability
-//    < |E|/2^32). The acceptance uniform (53 bits) is a second draw, made only when the
-//    proposal has π(ω') < π(ω); acceptance is tested as u·π_old < π_new (no division).
-//  - No work limit is needed: cost is O(n·m + |E|) set-up plus O(1) per step.
+// Initial state: the MAP event (map_association.hpp), as Williams & Lau did, so `burnin`
+// defaults to 0. Marginals = visit frequencies of X_{B+1}, ..., X_{B+N} (B = burnin, N = samples),
+// rejected and lazy steps included, counted as time spent per (target, state): a step that
+// changes nothing costs O(1). One chain over the whole graph. Randomness: RandomStream(
+// stream_seed(trial_key.seed, seed), trial_key.point, trial_key.trial), so output is a function
+// of (problem, trial, options) and different `seed` options give independent chains. Each step
+// draws one 64-bit word (bit 63: lazy; low 32 bits: the edge, by Lemire's multiply-shift with
+// rejection); a 53-bit acceptance uniform is drawn only when π(ω') < π(ω), tested as
+// u·π_old < π_new. No work limit: O(1) per step after the set-up (gating graph, MAP event).
+// Background and our readings: docs/algorithms/single-scan.md, "MCMCDA".
 #include <cstdint>
 #include <string>
 #include <string_view>

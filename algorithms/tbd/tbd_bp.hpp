@@ -1,66 +1,42 @@
 #pragma once
 // TBD-BP: track-before-detect by belief propagation (Liang, Kropfreiter & Meyer, "A BP method
-// for track-before-detect", IEEE SPL 30, 2023; derivations in tbd-bp-supplement.txt), on
+// for track-before-detect", IEEE SPL 30, 2023; derivations in tbd-bp-supplement), on
 // particles. The letter's body was not available: what it leaves open follows
-// docs/models/track-before-detect.md, and every such reading is an option below.
+// docs/models/track-before-detect.md, and every such reading [R] is an option below.
 //
-// One step k (docs/models/track-before-detect.md §3):
+// One step k:
 //  1. Legacy POs: α_n by prediction (algorithms/tbd/particle_object.hpp; r⁻ = p_s r̃). At
 //     k = 0 the problem's initial objects, if any, are the legacy POs' α.
 //  2. L iterations of the message passing of algorithms/tbd/cell_messages.hpp among the legacy
 //     POs (the Gaussian κ̃ of the supplement's eqs (5), (9), or the exact κ with
 //     `exact_kappa`). Schedule [R], `schedule`: serial (default: the POs in order of creation,
 //     each against the others' newest messages) or flooding (every PO's β^(ℓ) from the
-//     others' κ̃^(ℓ−1)). Flooding oscillates with period 2 wherever two POs can explain the
-//     same energy — each sees the other's claim and gives the object up, then both reclaim it
-//     — so a duplicate pair is never resolved at even L (and at odd L both are dropped); the
-//     serial schedule lets one PO keep the object and the other see it explained: the second
-//     in order, which meets the first's given-up claim (tests/tbd/test_cell_message_schedules.cpp,
-//     two POs on one object, D2, L = 1..4). Under D1 the swings die down instead, and two POs
-//     on one object both keep it from L = 2 under either schedule (measured, r⁻ = 0.9): D1's
-//     variance-only messages explain little away.
+//     others' κ̃^(ℓ−1); it oscillates with period 2 where two POs can explain the same energy).
 //  3. New POs: one per data cell j (the letter's "new object hypothesis for each data cell"),
 //     α(x,1) ∝ (μ_B/J) f_B,j(x), α(x,0) ∝ 1, so r⁻ = (μ_B/J)/(1 + μ_B/J); f_B,j is uniform
-//     over cell j's square with velocity ~ N(0, σ_v² I₂). Since μ_j(x), C_j(x) depend on the
-//     position only, a new PO is a `birth_grid`² midpoint quadrature of its cell (the J new POs
-//     cost J·Q²·|window| instead of J·P·|window|). Schedule [R]: each new PO is evaluated
-//     against the legacy POs' messages β^(L+1) to the cells; those with r̃ ≥ pruning_threshold
-//     are then taken serially in decreasing r̃, each re-evaluated against the legacy POs and
-//     the new POs already kept (their beliefs added to the cells' totals), and kept if still
-//     above. Why not flooding, as for the legacy POs: an object's energy covers about 3 × 3
-//     cells, so at ℓ = 1 every new PO around it claims it, and at ℓ = 2 each sees the others'
-//     claims and all give it up — the flooding schedule oscillates with period 2
-//     (tests/tbd/test_cell_message_schedules.cpp, one object on a 12 × 12 D1 grid: 21–26 new POs
-//     with r̃ > 0.5 at L = 1, none at L = 2 (best log-odds about −10), as many again at L = 3),
-//     so at odd L every object would be duplicated and at even L none would ever be born. The
-//     serial schedule lets the strongest new PO take the object and the neighbours see it
-//     explained.
+//     over cell j's square with velocity ~ N(0, σ_v² I₂), evaluated as a `birth_grid`²
+//     midpoint quadrature of the cell. Schedule [R]: each new PO is evaluated against the
+//     legacy POs' messages β^(L+1) to the cells; those with r̃ ≥ pruning_threshold are then
+//     taken serially in decreasing r̃, each re-evaluated against the legacy POs and the new POs
+//     already kept (their beliefs added to the cells' totals), and kept if still above.
+//     (Flooding over the new POs oscillates with period 2: duplicates at odd L, none at even L.)
 //  4. Beliefs f̃(x^(i),1) ∝ w^(i) Π_j κ̃^(L)_{n,j}(x^(i),1), existence r̃ (log-odds form).
 //     Legacy POs with r̃ < pruning_threshold are deleted, the others resampled to P particles
 //     (systematic). A kept new PO becomes a legacy PO: P particles drawn from its α (uniform in
 //     the cell, velocity prior) and weighted by Π_j κ̃ at their positions (the messages it was
 //     evaluated with), then resampled.
-//  5. Duplicates [R] (`merge_distance`, off by default; docs/models/track-before-detect.md §3.4 proposes merging
-//     new POs closer than 1 m): in decreasing r̃, a PO whose mean lies within merge_distance
-//     of a PO already kept is deleted. Measured in results/tbd/REPORT.md: at L = 2 POs pile up
-//     where crossing objects were, each over-explained cell making the others' ratios near 1.
+//  5. Duplicates [R] (`merge_distance`, off by default): in decreasing r̃, a PO whose mean lies
+//     within merge_distance of a PO already kept is deleted.
 //  6. Estimates: every PO with r̃ > detection_threshold, at its particle mean.
-// Schedule `joint` [R], closer to the letter, where legacy and new POs are variables of one
-// factor graph and L counts its iterations: iteration ℓ is a serial sweep over the legacy POs
-// (as `serial`), then the new-PO stage of step 3, whose kept new POs enter the field with their
-// extrinsic messages β_{n,j} ∝ α_n Π_{j'≠j} κ̃_{n,j'} (cell-excluded, as every message of eqs (5),
-// (9)) instead of their beliefs; the new POs kept at ℓ − 1 leave the field before the stage at
-// ℓ is redone. So from ℓ = 2 on the legacy POs see the new POs' messages, and at L = 1 the step
-// is `serial` at L = 1 but for the cell exclusion of the new POs' messages. The new POs'
-// beliefs and the kept set are those of the last iteration. (Flooding over all POs, the letter's
-// schedule read literally, duplicates objects at L = 1 and oscillates at L = 2: step 3.)
+// Schedule `joint` [R], closer to the letter: iteration ℓ is a serial sweep over the legacy POs,
+// then the stage of step 3, whose kept new POs enter the field with their extrinsic messages
+// β_{n,j} ∝ α_n Π_{j'≠j} κ̃_{n,j'} instead of their beliefs, and leave it before the stage at
+// ℓ + 1; so from ℓ = 2 on the legacy POs see the new POs.
 // Cost per step: O(L Σ_n P |W_n| + J Q² |W|) (`joint`: L J Q² |W|), linear in the number of POs
 // (supplement §3).
-// Runtime per step: bench/tbd/bench_tbd.cpp (tbd_bp_l1/*, tbd_bp_l2/*, by number of objects).
-// Particles: P = 2000 by default, not the 10 000 of the Meyer group's code ([K] of the notes):
-// the per-object cost is linear in P, and 2000 keeps TBD-BP at L = 2 within the issue's 5 ms
-// per object and step on one core (tbd_bp_l2); `particles=10000` is the notes' setting.
 // Randomness: RandomStream(algorithm_stream_seed(trial_key.seed, seed), point, trial).
+// Background and our readings (schedules, duplicates, particle count):
+// docs/models/track-before-detect.md §3.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -74,7 +50,7 @@ namespace dabench {
 
 struct TbdBpOptions {
   int iterations = 2;                // L, message-passing iterations per step (letter: 1 and 2)
-  int particles = 2000;              // P, per legacy PO (the notes' [K] uses 10 000; see the header)
+  int particles = 2000;              // P, per legacy PO ([K] uses 10 000; why: docs/models/track-before-detect.md §3.1)
   int birth_grid = 4;                // Q: a new PO's cell is a Q × Q midpoint quadrature
   double support_sigmas = 4.0;       // window margin around a PO's particles, in σ_h
   double detection_threshold = 0.5;  // report r̃ above ([K], [C])

@@ -2,24 +2,20 @@
 // TBD-MB: the Poisson/multi-Bernoulli track-before-detect baseline of Kropfreiter, Williams &
 // Meyer, "A Scalable Track-Before-Detect Method With Poisson/Multi-Bernoulli Model", FUSION
 // 2021 (arXiv 2109.01490), the letter's baseline that "does not systematically model object
-// interaction". RECONSTRUCTION: that paper's body was not available; what follows is the
-// reading of docs/models/track-before-detect.md §4.1 [R], built from its abstract (multi-Bernoulli approximation
-// of the MBM posterior, data association by the sum-product algorithm, recycling of Bernoulli
-// components) and the separable TBD likelihood. Every choice is an option below.
+// interaction". RECONSTRUCTION [R]: that paper's body was not available; this is our reading,
+// built from its abstract (multi-Bernoulli approximation of the posterior, data association by
+// the sum-product algorithm, recycling) and the separable TBD likelihood. Every choice is an
+// option below.
 //
 // Model: an object at p contributes to the cells of its support S(p) (centres within
 // `support_radius`, default 2σ_h) and to no other; supports of present objects are disjoint
-// ("each cell explained by at most one object"). Then the likelihood factorises over objects,
-// p(z | X) ∝ Π_{x∈X} ℓ(z | x) with ℓ of support_likelihood.hpp, times the exclusivity
-// constraint — which is where object interaction is lost: close objects cannot coexist, and
-// each claims the energy of its whole support (supplement Fig. 1(d)).
+// ("each cell explained by at most one object"), so p(z | X) ∝ Π_{x∈X} ℓ(z | x) (ℓ of
+// support_likelihood.hpp) times that exclusivity constraint.
 //
 // One step k:
-//  1. Prediction: legacy Bernoullis as in TBD-BP (particle_object.hpp: NCV, r⁻ = p_s r);
-//     the Poisson intensity of undetected objects, held as a mass Λ_j per data cell (uniform
-//     within the cell, velocity prior N(0, σ_v² I₂)): Λ_j ← p_s Λ_j + μ_B/J. The PPP is not
-//     moved by the motion model [R]: its mass comes from births and recycled Bernoullis, and
-//     an object's motion within a step (σ_v = 0.3 m/s) is below a cell.
+//  1. Prediction: legacy Bernoullis as in TBD-BP (particle_object.hpp: NCV, r⁻ = p_s r); the
+//     Poisson intensity of undetected objects, a mass Λ_j per data cell (uniform within the
+//     cell, velocity prior N(0, σ_v² I₂)): Λ_j ← p_s Λ_j + μ_B/J, not moved by the motion [R].
 //  2. Likelihood: every particle of every legacy Bernoulli, and the Q × Q quadrature of every
 //     cell's new Bernoulli (prior r = Λ_j/(1 + Λ_j), odds alone ξ_j = Λ_j ℓ̄_j), alone
 //     against the frame on its support.
@@ -30,18 +26,15 @@
 //     the cell's Poisson mass has become its new Bernoulli (Λ_j = 0).
 //  5. Recycling: Bernoullis with r̃ < recycle_threshold leave the multi-Bernoulli; with
 //     `recycling` their mass returns to the Poisson intensity (a legacy one's r̃ w_p to the
-//     cell of each particle, a new one's r̃_j to cell j), else it is dropped (then Λ holds the
-//     births only, as TBD-BP's new POs). Kept new Bernoullis get P particles drawn in their
-//     cell and weighted by ℓ Π ν (new_objects.hpp).
+//     cell of each particle, a new one's r̃_j to cell j), else it is dropped. Kept new
+//     Bernoullis get P particles drawn in their cell and weighted by ℓ Π ν (new_objects.hpp).
 //  6. Estimates: every Bernoulli with r̃ > detection_threshold, at its particle mean.
 // Reading `association` [R]: `objects` (default) is steps 3–4 as above; `none` skips the
-// exclusivity — every Bernoulli, legacy and each cell's new one, is updated alone with its
-// separable likelihood (weights w ℓ, r̃ = r T / (r T + 1 − r), T = Σ w ℓ; a new one r̃ = ξ_j /
-// (1 + ξ_j)), so nothing stops two Bernoullis from explaining one object. It is what the
-// supplement's evidence on TBD-MB may need: duplicates for Fig. 3's single run near GOSPA 10,
-// and a belief pulled towards a bright cell that another object shares (Fig. 1(d));
-// results/tbd/REPORT.md, "TBD-MB's readings", compares both with that evidence.
+// exclusivity — every Bernoulli, legacy and each cell's new one, is updated alone (weights w ℓ,
+// r̃ = r T / (r T + 1 − r), T = Σ w ℓ; a new one r̃ = ξ_j / (1 + ξ_j)), so nothing stops two
+// Bernoullis from explaining one object.
 // Randomness: RandomStream(algorithm_stream_seed(trial_key.seed, seed), point, trial).
+// Background and our readings: docs/models/track-before-detect.md §4.1.
 #include <string>
 #include <string_view>
 #include <vector>

@@ -2,83 +2,43 @@
 // JDT-VB: variational-Bayes joint detection and tracking with multipath data association
 // (jdt-vb-multipath-othr, Sec. III, Table I). Tracker `jdt-vb`.
 //
-// Mean-field q(X, S, A) = q(X) q(S) q(A) (eqs 7, 22–23), maximising the free energy B of eq (6)
-// by coordinate ascent over three modules, iterated 3 → 2 → 1 (Table I):
-//  - Module 3 (association): per scan, the marginals E[a^{i,j,τ}] by loopy BP on eq (44)
-//    (algorithms/tracking/multipath_association.hpp) with the evidence χ of eq (43) — linearised
-//    E_q(x) log N(y | h^τ(x), R) = log N(y | h^τ(x̂), R) − ½ tr(R⁻¹ H P Hᵀ) — over the gated pairs
-//    of eq (33) (gate probability p_g), and V_k of eqs (34)–(35).
+// Mean field q(X, S, A) = q(X) q(S) q(A) (eqs 7, 22–23) maximising the free energy B of eq (6)
+// by coordinate ascent over three modules, run 3 → 2 → 1 in each iteration (Table I):
+//  - Module 3 (association): per scan, E[a^{i,j,τ}] by loopy BP on eq (44)
+//    (algorithms/tracking/multipath_association.hpp) with the evidence χ of eq (43) over the
+//    gated pairs of eq (33) (gate probability p_g) and V_k of eqs (34)–(35).
 //  - Module 2 (detection): per track, q(s_{1:K}) by forward–backward on eqs (38)–(40)
-//    (algorithms/tracking/meta_state_chain.hpp), two-state chain p(s_k = s_{k−1}) = 0.85 (Sec. IV-A2).
-//    In eqs (39) and (43) an active target's detection probability is p^τ_d p_g, the chance
-//    that its detection falls in the gate (the usual PDA correction; eq 15 has no p_g, and
-//    without it at p_d near 1 one detection outside its gate makes the target dormant).
-//  - Module 1 (tracking): per track, the synthetic measurements of eq (36) per path and a
-//    fixed-interval unscented RTS smoother (algorithms/tracking/ukf.hpp; the OTHR model is nonlinear).
-//    The paper runs one smoother per path and fuses the path-conditional estimates by eq (32),
-//    which, as it notes, neglects their dependence (each carries the prior p(x)); measured here
-//    many of its updates would lower B (the safeguard below rejects 31–100 per run under
-//    `literal = 1` at Table IV's settings, bench/tracking/bench_jdt_vb.cpp's pool). By default
-//    (`joint_fusion = 1`) one unscented filter takes all paths' synthetic measurements of a scan
-//    at once, followed by the RTS pass — the maximiser of eq (31) itself up to the unscented
-//    approximation; `joint_fusion = 0` is the paper's eq (32). Paths with no gated mass at a
-//    scan give no measurement there; every smoother starts from the track's head (x̂, P at
-//    its first scan) as p(x_first).
+//    (algorithms/tracking/meta_state_chain.hpp), p(s_k = s_{k−1}) = `stay`. An active target's
+//    detection probability in eqs (39) and (43) is p^τ_d p_g (eq 15 has no p_g).
+//  - Module 1 (tracking): per track, eq (36)'s synthetic measurements per path and an unscented
+//    RTS smoother (algorithms/tracking/ukf.hpp) from the track's head as p(x_first). Default
+//    `joint_fusion = 1`: one filter takes all paths' synthetic measurements of a scan (eq 31's
+//    maximiser up to the unscented approximation); `joint_fusion = 0`: per-path smoothers
+//    fused by eq (32).
+// The run (Sec. III-E):
+//  1. Sequential pass: each live track is predicted and gated per path (eq 33); Module 3 with
+//     the predictive likelihood N(y | h^τ(x̂⁻), S); a stacked UKF update and a forward step of
+//     the meta-state chain. Measurements outside every gate start heads
+//     (algorithms/tracking/track_heads.hpp; thresholds ρ = head_range, head_range_rate,
+//     head_azimuth; p(s = 1) = min(1, (|Y|/N_P)²); `alternative_heads`: also every equally good
+//     path reading). Deletion: q(s_k = 1) < δ_s at each of three successive scans after the
+//     first (default), or their mean < δ_s (`delete_on_mean = 1`).
+//  2. Batch VB over the tracks that reached q(s = 1) ≥ δ_s, over their spans: Modules 3 → 2 → 1
+//     until B changes by < δ_T or after r_max iterations. Gates only grow across iterations.
+//  3. Output: per batch track the scans from the first to the last with smoothed
+//     q(s_k = 1) ≥ δ_s, confirmed (from its head scan with `report_from = head`); a track
+//     without such a scan whole, unconfirmed.
+// `literal = 1` forces joint_fusion = 0 and alternative_heads = 0; the other keys keep theirs.
 //
-// The run (Sec. III-E, our reading where the text is brief):
-//  1. Sequential pass over the scans (track management). Each live track is predicted; its
-//     gates per path are eq (33) about the prediction; Module 3 runs on the scan with the
-//     predictive likelihood N(y | h^τ(x̂⁻), S) (the exact single-scan association given the
-//     prediction — eq (43) with R assumes a converged q(x)); each track takes a UKF update
-//     with its paths' synthetic measurements and a forward step of its meta-state chain
-//     (eq 39 evidence). Measurements outside every live track's gate start new tracks
-//     (algorithms/tracking/track_heads.hpp): groups pairwise within ρ = [80 km, 0.005 km/s, 0.03 rad],
-//     within a group the path assignment of the most members whose ground states agree (least
-//     mean Mahalanobis distance), every path-shifted reading of those members that fits as
-//     well (our addition: `alternative_heads = 0` starts only the best reading),
-//     p(s = 1) = min(1, (|Y|/N_P)²).
-//     Deletion: the text deletes a track when "the average detection probability in three
-//     successive scans is less than δ_s". Two readings are literal: q(s_k = 1) < δ_s at each of
-//     three successive scans after the first (the default), or the mean of the three filtered
-//     q(s_k = 1) below δ_s (`delete_on_mean = 1`). The predicted q(s = 1) cannot exceed
-//     p(1|1) = δ_s = 0.85, so under the mean reading one scan without a return on any path
-//     (q falls to about 0.45 at p_d = 0.4) deletes a track; results/jdtvb/REPORT.md measures
-//     what that does to Table IV's TPD, which the paper's numbers exclude.
-//  2. The tracks that reached q(s = 1) ≥ δ_s at some scan enter the batch VB over their
-//     spans (first scan to deletion or K): Modules 3 → 2 → 1 with smoothed q(x), until B
-//     changes by < δ_T or r_max iterations. A pair once gated stays gated in later iterations
-//     (gates grow), so each iteration maximises one objective on a growing set of pairs (a
-//     new pair enters with zero mass and leaves B unchanged). Modules 3 and 2 maximise B
-//     exactly (Module 3 on the Bethe approximation of H(q(A)), which is convex for this
-//     association structure); Module 1 maximises it only up to the unscented approximation
-//     (and eq (32) not at all), so a Module-1 update that would lower B is rejected (q(X)
-//     kept) and counted in `rejected_updates()` (by how much, in `largest_rejected_decrease()`).
-//     B therefore never decreases.
-//  3. Output: per batch track, the scans from the first to the last with smoothed
-//     q(s_k = 1) ≥ δ_s, confirmed; tracks without such a scan are output whole, unconfirmed.
-//     `report_from = head` outputs a confirmed track from its head scan instead (its
-//     tentative scans included): the paper's Table IV reports a "tentative track latency",
-//     which counts from a track's start rather than its confirmation (REPORT: TTL readings).
-//
-// Paper-literal configuration: `literal = 1` sets joint_fusion = 0 (eq 32) and
-// alternative_heads = 0 (one head per return group), whatever those two keys say; the other
-// options keep their values, so the deletion reading is `delete_on_mean` (both readings are
-// literal). The defaults are dabench's readings above, under which Table IV's JDT-VB rows are
-// measured (results/jdtvb/REPORT.md).
-//
-// The free energy reported (SolveReport::free_energy and free_energy_history()) is eq (6)
-// under the linearisation of eq (43), with H(q(A)) in its Bethe form and clutter uniform over
-// the problem's region (density λ = N_c / V), up to a constant of the measurements alone:
+// Invariant: B (SolveReport::free_energy, free_energy_history()) never decreases. Modules 3
+// and 2 maximise it exactly; a Module-1 update that would lower it is rejected (q(X) kept,
+// counted in rejected_updates()). B is eq (6) under eq (43)'s linearisation, H(q(A)) in Bethe
+// form, clutter density λ = N_c / V, up to a constant of the measurements alone:
 //   B = Σ_k [Σ_j E[a^{0,j}] log λ + Σ_{ijτ} E[a^{i,j,τ}] E log N(y_j | h^τ(x_i), R) + H_Bethe(q(A_k))]
 //     + Σ_i [E log p(s_i) + Σ_k E ξ_{i,k}(s_{i,k}) + H(q(s_i))] + Σ_i [E log p(x_i) + H(q(x_i))],
-// where q(x_i) is the Gauss–Markov chain of the smoother: its marginals and the RTS
-// cross-covariances Cov(x_k, x_{k+1}) = G_k P_{k+1|K}. Eq (32) fixes only the marginals (as does
-// the sequential pass's filtering); their couplings are then the ones that maximise B's chain
-// terms (algorithms/tracking/gauss_markov_coupling.hpp), which on smoother marginals are the RTS
-// ones. The χ of eq (43) has −log(λV_k) in every detection and −log V_k in every clutter term;
-// both cancel in E[a] and in B, so V_k only scales χ.
-// Edge cases: p_d p_g is capped at 1 − 10⁻⁹ and a problem without clutter is treated as having
-// 10⁻⁶ expected clutter measurements per scan, so that every χ is finite.
+// q(x_i) a Gauss–Markov chain (RTS couplings; for eq 32 algorithms/tracking/gauss_markov_coupling.hpp).
+// Edge cases: p_d p_g ≤ 1 − 10⁻⁹; no clutter is read as 10⁻⁶ clutter measurements per scan.
+// Background and our readings: docs/algorithms/tracking.md, "JDT-VB".
 #include <string>
 #include <string_view>
 #include <vector>

@@ -495,7 +495,7 @@ class MptfRun {
     std::erase_if(groups_, [](const Group& g) { return g.members.empty(); });
   }
 
-  // Greedy merging by least Δχ² (header item 4c).
+  // Greedy merging by least Δχ² (header item 4(d)).
   void merge_groups() {
     for (;;) {
       double best = merge_gate_;

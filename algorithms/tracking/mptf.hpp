@@ -1,105 +1,40 @@
 #pragma once
-// MPTF — multipath track fusion, the simple baseline of jdt-vb-multipath-othr (Sec. IV: "multiple
-// path-dependent tracks are obtained in slant coordinate by using PDA and UKF. Then, these
-// path-dependent tracks are fused to derive target kinematic states in the ground coordinate";
-// parameters in Sec. IV-A2: M/N logic 2/2 & 1/3, deletion after 3 (N_c = 125) or 5 (N_c = 400)
-// scans with no measurement in the gate, P_G = 0.971; results in Table IV).
+// MPTF: multipath track fusion, the simple baseline of jdt-vb-multipath-othr (Sec. IV;
+// parameters Sec. IV-A2: M/N 2/2 & 1/3, deletion after 3 or 5 scans with an empty gate,
+// P_G = 0.971; results Table IV). Its ref. [11] (Percival & White's multihypothesis fusion of
+// multipath OTHR tracks) was found only as abstracts: the equations below are ours.
 //
-// Reference [11]. The paper's text file has no reference list. The MPTF of the OTHR literature
-// is the single-radar "multipath track fusion (MPTF) algorithm" of D. J. Percival and
-// K. A. B. White, "Multihypothesis fusion of multipath over-the-horizon radar tracks", Proc.
-// SPIE 3373 (1998), which M. G. Rutten and D. J. Percival, "Fusion of multipath tracks for a
-// network of over-the-horizon radars" (IDC 2002, pp. 193–198; abstract at
-// manuscript.isc.ac/inventory/49/2412797.htm) extend to several radars. We take [11] to be that
-// method. We found only abstracts of it (and of the related Anderson & Krolik, "Track
-// association for OTH radar with a statistical ionospheric model", IEEE TSP 2002, "mode
-// linking"; and the Chinese "adaptive OTHR multipath track fusion", ejournal.org.cn/en/article/
-// 114895034, which compares itself with the multihypothesis fusion). What they state and we
-// follow: (1) a tracker in radar (slant) coordinates produces several tracks per target, one per
-// propagation mode, whose modes are unknown; (2) fusion decides jointly which slant tracks belong
-// to one target and which mode each has — a hypothesis over (track, mode, target) — by the
-// agreement of the tracks once each is converted to ground coordinates under its hypothesised
-// mode (coordinate registration), and (3) fuses the tracks of one target into a ground track;
-// (4) the mode hypothesis is revised as data accumulate. The equations below are ours.
-//
-// 1. Path-dependent slant tracks (one PDA filter per track, paths unknown to it).
-//    Slant state s = [r, ṙ, ζ, ζ̇] (slant range km, range rate km/s, azimuth rad, azimuth rate
-//    rad/s); near-constant velocity in r and in ζ with the problem's period T:
-//      s_{k+1} = F_s s_k + w,  F_s = I₂ ⊗ [[1, T], [0, 1]],  w ~ N(0, diag(q_r, q_ζ) ⊗ Q₁(T)),
-//      Q₁(T) = [[T³/3, T²/2], [T²/2, T]], q_r, q_ζ = slant_psd_scale × the problem's ground PSDs
-//      (read off Q as Q(1,1)/T and Q(3,3)/T; r ≈ g and ζ ≈ ϑ make them the natural scale).
-//    Measurement y = H s + v, H = [I₃ 0], v ~ N(0, R) (R of path 0; the paths share R here).
-//    In these coordinates the measurement is linear, so the paper's UKF is exactly the Kalman
-//    filter (algorithms/tracking/ukf.hpp: the unscented transform is exact for linear maps); we use the
-//    closed form, and tests/tracking/test_mptf.cpp checks it against unscented_filter().
-//    PDA (Bar-Shalom & Tse 1975; Bar-Shalom, Willett & Tian 2011, Sec. 3.4), gate ν_jᵀS⁻¹ν_j ≤ γ,
-//    γ = χ²₃ quantile at P_G:
-//      e_j = exp(−ν_jᵀS⁻¹ν_j / 2),  b = λ (2π)^{3/2} |S|^{1/2} (1 − P_D P_G) / P_D,
-//      β_j = e_j / (b + Σe),  β_0 = b / (b + Σe),  ν = Σ β_j ν_j,  K = P⁻Hᵀ S⁻¹,
+// 1. Slant tracks, one PDA filter each, paths unknown to it. s = [r, ṙ, ζ, ζ̇], near-constant
+//    velocity: F_s = I₂ ⊗ [[1, T], [0, 1]], Q_s = diag(q_r, q_ζ) ⊗ [[T³/3, T²/2], [T²/2, T]],
+//    q_r, q_ζ = slant_psd_scale × the problem's ground PSDs (Q(1,1)/T, Q(3,3)/T); y = [I₃ 0] s + v,
+//    v ~ N(0, R of path 0). Linear, so the paper's UKF is this Kalman filter. PDA with gate
+//    ν_jᵀS⁻¹ν_j ≤ γ = χ²₃(P_G), e_j = exp(−ν_jᵀS⁻¹ν_j / 2), ν = Σ β_j ν_j, K = P⁻Hᵀ S⁻¹:
+//      b = λ (2π)^{3/2} |S|^{1/2} (1 − P_D P_G) / P_D,  β_j = e_j / (b + Σe),  β_0 = b / (b + Σe),
 //      m = m⁻ + K ν,  P = P⁻ − (1 − β_0) K S Kᵀ + K (Σ β_j ν_j ν_jᵀ − ν νᵀ) Kᵀ,
-//    λ = the problem's clutter density, P_D = the mean of the paths' detection probabilities
-//    (a slant track does not know its path; in the OTHR scenario all are equal). No measurement
-//    in the gate: the prediction stands.
-// 2. Initiation and M/N logic "2/2 & 1/3" (our reading: a cascade). A measurement in no track's
-//    gate is a candidate; a candidate y₁ (scan k−1) and a measurement y₂ (scan k, in no track's
-//    gate) pass the first stage (2 detections in 2 scans) when
-//      u²/(2σ_r² + T²σ_ṙ²/2) + v²/(2σ_ṙ²) ≤ χ²₂(P_G),  u = r₂ − r₁ − T(ṙ₁ + ṙ₂)/2,  v = ṙ₂ − ṙ₁,
-//      |ζ₂ − ζ₁| ≤ T ζ̇_max + √(χ²₁(P_G)) √2 σ_ζ,
-//    (every such pair starts a tentative track). Two-point differencing gives its state at both
-//    scans: (r, ṙ, ζ) of that scan's measurement and ζ̇ = (ζ₂ − ζ₁)/T, covariance
-//    diag(σ_r², σ_ṙ²) ⊕ [[σ_ζ², ±σ_ζ²/T], [±σ_ζ²/T, 2σ_ζ²/T²]] (− at k−1, + at k); the measured
-//    ṙ beats differencing r by a factor ~400, so range is not differenced. Second stage
-//    (confirm_hits of the next confirm_scans scans, default 1/3): confirmed at the first scan that
-//    completes it, deleted when the window ends without. A confirmed track is deleted after
-//    miss_limit consecutive scans without a measurement in its gate (option deletion_misses; 0 =
-//    the paper's rule read as 3 if N_c ≤ 200 else 5, N_c = clutter_mean). A tentative or confirmed
-//    track whose (r, ṙ, ζ) estimate lies within squared Mahalanobis distance duplicate_distance of
-//    an older track's (covariance P_a + P_b) duplicates it and is deleted (default 4: a track
-//    re-initiated on a target's path, after a measurement fell outside the older track's gate,
-//    then shares its measurements; tracks of distinct paths of one target lie at d² ≳ 20).
-// 3. Slant → ground, per hypothesised path τ. The slant state of a ground state x = [g, ġ, ϑ, ϑ̇]:
-//      S^τ(x) = [h^τ_r(x), h^τ_ṙ(x), h^τ_ζ(x), ∇h^τ_ζ(x)·[ġ, 0, ϑ̇, 0]]   (h^τ: eq (57)),
-//    ζ̇ being the azimuth's rate of change along the NCV motion (eq (1)). A slant estimate
-//    N(m, P) converts to ground by solving S^τ(x) = m (Gauss–Newton from x = m, as OTHR slant
-//    and ground coordinates differ by tens of km; Jacobian rows 1–3 from the sensor, row 4 by
-//    central differences) with covariance J⁻¹ P J⁻ᵀ (linearised; ~1e-3 relative nonlinearity at
-//    σ_r = 5 km).
-// 4. Fusion (our equations for [11]'s hypothesis scoring). A group G of confirmed slant tracks
-//    with distinct paths τ_i has the information-weighted ground estimate and consistency
-//      P_G⁻¹ = Σ_i P_i⁻¹,  x_G = P_G Σ_i P_i⁻¹ x_i,  χ²(G) = Σ_i (x_i − x_G)ᵀ P_i⁻¹ (x_i − x_G),
-//    with (x_i, P_i) the ground conversion of track i under τ_i (errors of different slant tracks
-//    taken as independent: their measurements are disjoint, common process noise ignored). A
-//    group's paths are the injective labelling with the least χ² (ties keep the current labels;
-//    a lone new track takes the first path, EE: one track cannot tell its path, and all paths
-//    are a priori equally likely here). Each scan: (a) groups lose deleted tracks (an empty
-//    group ends its fused track); (b) each newly confirmed slant track is a group of one;
-//    (c) every group is relabelled; (d) greedily, the pair of groups (A, B) with the least
-//    Δχ² = χ²(A ∪ B) − χ²(A) − χ²(B) (best labelling of the union, at most N_P members, fused
-//    ground estimates within kMergeWindowRange / kMergeWindowBearing) merges while
-//    Δχ² ≤ χ²₄(fusion_pg) — a test that A and B see the same ground state; the older fused track
-//    survives, the younger ends; (e) each group's x_G, diag P_G is its fused track's output at
-//    this scan. A new group starts a fused track whose states are back-filled from its members'
-//    slant estimates since their first measurement (under the current labels).
-// 5. Fused-track confirmation (the paper gives no rule; our reading). A fused track is confirmed
-//    once it has fused confirm_members (default 3) slant tracks at one scan, and its history is
-//    then rewritten from its members' slant histories under the labels of that scan; it stays
-//    confirmed to its end; unconfirmed fused tracks are output with confirmed = false. Why 3:
-//    with two tracks the labelling is ambiguous in this geometry — (EE, FE) and (EF, FF) differ
-//    by the same transmit-layer range offset, (EE, EF) and (FE, FF) by the same receive-layer
-//    offset, so either pair reading is consistent and one of them places the target 30–60 km
-//    off; three distinct paths fix the labels. Measured on 100 runs at pd = 0.75 (seed 12345):
-//    confirm_members = 1 reports every slant track, clutter-born ones included (NFT 2.9 at
-//    N_c = 125 and 38 at N_c = 400, against Table IV's 1.86 and 12.7); 2 gives NFT ≈ 0.6–0.7
-//    (mostly mislabelled pairs) and TPD 0.87–0.89; 3 gives NFT ≈ 0.1 and TPD 0.93–0.94.
-// Known limitations (each visible in the results): a slant track whose path is FE or EF gates
-// the other's measurement (same range, azimuths 6σ_ζ apart), and PDA pulls it toward the other,
-// biasing the bearing (AEE-B stays near 1.2 mrad even without clutter) and at times preventing
-// fusion (the "ghost track" of Fig. 6a); groups are never split when members drift apart;
-// crossing targets (3 and 4 at scan 20) can swap or share slant tracks.
-//
-// Cost: gating by binary search over range-sorted measurements, fixed-size Eigen in the PDA and
-// pairing loops (no heap allocation, no virtual calls per measurement); the sensor's virtual
-// measure/jacobian are called per confirmed slant track and path each scan (conversion only).
+//    λ the clutter density, P_D the paths' mean detection probability; empty gate: prediction.
+// 2. Track logic "2/2 & 1/3" as a cascade. A measurement y₁ in no gate at scan k−1 and y₂ in
+//    no gate at k start a tentative track when (u = r₂ − r₁ − T(ṙ₁ + ṙ₂)/2, v = ṙ₂ − ṙ₁)
+//      u²/(2σ_r² + T²σ_ṙ²/2) + v²/(2σ_ṙ²) ≤ χ²₂(P_G),  |ζ₂ − ζ₁| ≤ T ζ̇_max + √χ²₁(P_G) √2 σ_ζ,
+//    with two-point-differenced states at both scans. confirm_hits hits in the next
+//    confirm_scans scans confirm it, else it is deleted; a confirmed track is deleted after
+//    miss_limit consecutive empty gates (deletion_misses; 0 = 3 if N_c ≤ 200 else 5). A track
+//    within squared Mahalanobis distance duplicate_distance of an older one in (r, ṙ, ζ) is deleted.
+// 3. Slant → ground under path τ: x solves S^τ(x) = m by Gauss–Newton from x = m, where
+//    S^τ(x) = [h^τ(x) (eq 57), ∇h^τ_ζ(x)·[ġ, 0, ϑ̇, 0]]; covariance J⁻¹ P J⁻ᵀ.
+// 4. Fusion. A group G of confirmed slant tracks with distinct paths τ_i, ground estimates
+//    (x_i, P_i) under them:
+//      P_G⁻¹ = Σ_i P_i⁻¹,  x_G = P_G Σ_i P_i⁻¹ x_i,  χ²(G) = Σ_i (x_i − x_G)ᵀ P_i⁻¹ (x_i − x_G);
+//    its labels are the injective labelling with least χ² (ties keep the current ones). Each
+//    scan: (a) deleted members leave (an empty group ends its fused track); (b) each newly
+//    confirmed slant track is a group of one; (c) every group is relabelled; (d) greedily, the
+//    pair (A, B) with least Δχ² = χ²(A ∪ B) − χ²(A) − χ²(B) merges while Δχ² ≤ χ²₄(fusion_pg)
+//    (at most N_P members, within kMergeWindowRange / kMergeWindowBearing; the older fused track
+//    survives); (e) x_G, diag P_G is the fused track's output. A new fused track is back-filled
+//    from its members' slant histories.
+// 5. A fused track is confirmed once it fuses confirm_members (default 3) slant tracks at one
+//    scan; its history is then rewritten under that scan's labels. Unconfirmed fused tracks are
+//    output with confirmed = false.
+// Background and our readings: docs/algorithms/tracking.md, "MPTF".
 #include <string>
 #include <string_view>
 #include <vector>

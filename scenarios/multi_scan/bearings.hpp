@@ -1,72 +1,44 @@
 #pragma once
 // Scenario "bearings": the bearings-only experiment of Williams & Lau, "Multiple scan data
 // association by convex variational inference" (multiscan-convex-variational), Sec. IV.
+// The paper's values are the defaults; [R] marks our readings, where the paper is silent.
 //
-// Model (paper's values are the defaults):
+// Model:
 //  - Region [−100, 100]²; four sensors at the corners, indexed counter-clockwise from
-//    (−100, −100): (−100,−100), (100,−100), (100,100), (−100,100). Seen from its corner, the
-//    region is exactly the 90° wedge of bearings [θ_k, θ_k + 90°] with θ_k = 0°, 90°, 180°, 270°.
-//  - Number of targets Poisson(mean_targets), known to the estimator (poisson_targets = 0 uses
-//    exactly mean_targets, e.g. one target for exact single-track checks). A draw with no
-//    target is a problem with no tracks (the runner records it as skipped:no_targets).
-//  - Targets are uniform on the region and static: the paper "refines locations" with every
-//    scan and describes no motion model, so positions do not change between scans.
-//  - Track initialisation: one sensor measures the target's bearing with N(0, init_noise_deg²)
-//    noise; the track's particles represent the posterior π0(x) ∝ 1{x in region}·N(φ(x); φ_m,
-//    σ0²) (uniform prior × that bearing). Which sensor is a reading [R] (`init_sensor`): the
-//    paper initialises tracks "from one sensor … from a single location"; `corner` (default:
-//    one site, the wording's most direct reading) takes init_corner for every target, `random`
-//    draws a corner uniformly per target (the uniform is drawn either way, so the
-//    two readings share the draws up to the first target whose corner differs; its particles
-//    then take other numbers), `site` takes the point
-//    (init_site_x, init_site_y) outside the open region for every target: a separate accurate
-//    sensor that does not scan (the paper's four corner sensors make "four scans in total"; at a
-//    corner, `site` is `corner`, since that corner's sensor scans either way).
-//  - Scans: scans_per_sensor scans of each of the four sensors, so 4 or 12 scans, in the order
-//    `scan_order` [R]: `round_robin` (default; scan t uses sensor t mod 4) or `grouped` (scan t
-//    uses sensor t / scans_per_sensor: all of sensor 0's scans, then sensor 1's, ...). The
-//    paper does not give the order; with one scan per sensor the two coincide. In each scan every target is detected with
-//    probability pd, with bearing noise N(0, noise_deg²); false alarms are Poisson(clutter_mean)
-//    uniform over the sensor's 90° wedge; the measurements of a scan are shuffled.
+//    (−100, −100). Seen from its corner, the region is the 90° wedge of bearings
+//    [θ_k, θ_k + 90°], θ_k = 0°, 90°, 180°, 270°.
+//  - Poisson(mean_targets) targets (exactly mean_targets if poisson_targets = 0), known to the
+//    estimator, uniform on the region and static [R]. No target: a problem with no tracks.
+//  - Track initialisation: one bearing with N(0, init_noise_deg²) noise, from the sensor that
+//    `init_sensor` [R] names (corner: init_corner; random: a corner per target; site: a
+//    non-scanning sensor at (init_site_x, init_site_y)). The track's particles represent
+//    π0(x) ∝ 1{x in region}·N(φ(x); φ_m, σ0²).
+//  - Scans: scans_per_sensor scans of each sensor (4 or 12 scans), in the order `scan_order` [R]
+//    (round_robin: scan t uses sensor t mod 4; grouped: sensor t / scans_per_sensor). Each
+//    target is detected with probability pd, with bearing noise N(0, noise_deg²); false alarms
+//    are Poisson(clutter_mean), uniform over the sensor's 90° wedge; a scan's measurements are
+//    shuffled.
 //  - Factors, eq (33) with constant Pd:  ψ_t(p, 0) = 1 − pd,
 //      ψ_t(p, j) = N(wrap(z_j − θ_k(x_p)); 0, σ²)·pd / λ_fa,  λ_fa = clutter_mean / (π/2) per
-//    radian, wrap to (−π, π] (the Gaussian on the wrapped difference; the wrapped-normal terms
-//    it drops are below e^{−(2π)²/(2σ²)}). No gating, except that a factor whose |difference|
-//    exceeds 37σ is stored as 0 instead of its value (< 1e−290, against 1 − pd ≥ 1e−3 for a
-//    miss): a negligible threshold that only saves the exp().
+//    radian, wrap to [−π, π). No gating, but a factor with |difference| > 37σ (< 1e−290) is
+//    stored as 0.
 //
-// Particles (parameter `particles`, N). Proposal g for the relative bearing φ ∈ [0, π/2] and
-// range r from the corner: φ ~ N(φ_m, σ0²) truncated to [0, π/2] (rejection near the mode,
-// Robert's exponential rejection in a far tail), r = L(φ)·√u with L(φ) = 200 / max(cos φ, sin φ)
-// the length of the ray inside the region. In the plane,
-//     g(x) = TN(φ; φ_m, σ0, [0, π/2]) · 2 / L(φ)²,
-// known exactly, so the importance weights ψ^i(p) = π0(x_p)/g(x_p) ∝ L(φ_p)² make the weighted
-// particles an exact (unbiased up to self-normalisation) representation of π0. Since L varies
-// little across a 0.1° fan, the weights are nearly equal (this is almost exact sampling).
-// From a site, φ is relative to the smallest bearing of the region seen from it, the wedge is
-// that of the region's corners (at most π), the ray meets the region on [r_in(φ), r_out(φ)],
-// r² is uniform on [r_in², r_out²] and L(φ)² above becomes r_out² − r_in² (r_in = 0 at a corner).
-// Each track also gets a truth probe (harness/multi_scan/scenario.hpp): one more hypothesis at
-// the true position, last in the track, with prior ε·L(φ*)² (ε = probe_weight), and
-// density_scale N·g(x) for particles, N·g(x*)/ε for the probe (harness/multi_scan/particle_metrics.hpp).
-//
-// Default particle count: 10000. The posterior after the scans covers a small part of the
-// initial bearing line, so only that share of the particles carries its weight. Chosen with
-// experiments/multiscan-particles.ini (one target per trial, where jpda-bp is exact Bayes, so
-// HPD values must be Uniform(0, 1) up to particle error; the KS distance of 300, 1000, 3000 and
-// 10000 particles against its 5 % critical value): 10000 is the smallest of these counts that
-// passes at 4 and at 12 scans (results/multiscan/REPORT.md, checks E1 and E2, computes this from
-// the committed run). What it costs each method:
-// bearings_trial in bench/multi_scan/bench_multi_scan.cpp, and the time_us columns of the runs
-// in results/multiscan/ (plots/multiscan_cost.py).
+// Particles (N = `particles`): relative bearing φ ~ N(φ_m, σ0²) truncated to the wedge, range r
+// with r² uniform on [r_in(φ)², r_out(φ)²] (from a corner r_in = 0, r_out = L(φ) =
+// 200 / max(cos φ, sin φ)), so g(x) = TN(φ; φ_m, σ0, wedge) · 2 / (r_out² − r_in²) and the
+// importance weights ψ^i(p) = π0(x_p)/g(x_p) ∝ r_out² − r_in² are exact. Each track ends with a
+// truth probe (harness/multi_scan/scenario.hpp): one more hypothesis at the true position, prior
+// ε·(r_out² − r_in²) at its bearing (ε = probe_weight); density_scale is N·g(x) for particles,
+// N·g(x*)/ε for the probe (harness/multi_scan/particle_metrics.hpp).
 //
 // Draw order (stable; a change alters every trial's numbers):
 //  1. the number of targets: poisson(mean_targets) (nothing if poisson_targets = 0);
-//  2. per target: uniform x, uniform y, uniform (initialising sensor; drawn also when
-//     init_sensor = corner), normal (its bearing
-//     noise), then per particle: the truncated normal's uniforms/normals, one uniform (range);
+//  2. per target: uniform x, uniform y, uniform (initialising corner; drawn whatever
+//     init_sensor), normal (its bearing noise), then per particle: the truncated normal's
+//     uniforms/normals (again while the ray meets the region in zero area), one uniform (range);
 //  3. per scan: per target bernoulli(pd) and, if detected, one normal; poisson(clutter_mean),
 //     one uniform per false alarm; Fisher–Yates shuffle (for k = M−1..1 one uniform).
+// Background and our readings: docs/algorithms/multi-scan.md#the-bearings-only-scenario
 #include <Eigen/Core>
 #include <string>
 #include <string_view>
@@ -81,7 +53,7 @@ namespace dabench {
 struct BearingsOptions {
   double mean_targets = 8.0;    // Poisson mean of the number of targets (paper: 8)
   bool poisson_targets = true;  // false: exactly mean_targets targets (must then be an integer)
-  int particles = 10000;        // N particles per track (see the header)
+  int particles = 10000;        // N per track (why 10000: docs/algorithms/multi-scan.md#how-many-particles)
   double pd = 0.9;              // detection probability (paper: 0.9)
   double clutter_mean = 1.0;    // false alarms per scan, uniform over the 90° wedge (paper: 1)
   double noise_deg = 1.0;       // bearing noise s.d. of the scans, degrees (paper: 1)
