@@ -47,7 +47,7 @@ struct CorrelationDecayOptions {
   int depth = 5;                          // t: recursion levels of (40)-(41) (paper: 3, 5, 7)
   std::int64_t budget = 100000000;        // evaluations of (40)/(41) per problem (skipped:budget above)
   bool memo = true;                       // memoise Φ on (removed set, node, t); same results
-  std::int64_t memo_entries = 1 << 20;    // memo cap in entries (table ≤ 2 slots/entry, 28 B/slot at ≤64 nodes)
+  std::int64_t memo_entries = 1 << 20;    // memo cap in entries (table ≤ 2 slots/entry, 32 B/slot at ≤64 nodes)
 
   void bind(ParamList& params) {
     params.add("depth", depth, "t: recursion depth of eqs (40)-(41); 1 = PDA, >= nodes-1 = exact");

@@ -457,7 +457,7 @@ class MptfRun {
       FusedOutput& out = outputs_[g.output];
       if (!out.confirmed && static_cast<int>(g.members.size()) >= o_.confirm_members) {
         out.confirmed = true;
-        write_history(g, k);  // the labels are now backed by two or more paths
+        write_history(g, k);  // the labels are now backed by confirm_members paths
       }
       out.means.push_back(g.fused.mean);
       out.diagonals.push_back(g.fused.covariance.diagonal());
