@@ -6,7 +6,7 @@
 #   usage: bash bench/thread_scaling.sh [EXPERIMENT.ini] [TRIALS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-experiment=${1:-experiments/bp-throughput.ini}
+experiment=${1:-experiments/readme/bp-throughput.ini}
 trials=${2:-10000}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT

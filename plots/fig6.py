@@ -2,7 +2,7 @@
 """Fig. 6 of Williams & Lau 2014 (bp-marginal-association): marginal error and time vs. a sweep.
 
 Usage:
-  /usr/bin/python3 plots/fig6.py RUN_DIR/summary.csv [--x spacing] [--out RUN_DIR/fig6.png]
+  /usr/bin/python3 -m plots.fig6 RUN_DIR/summary.csv [--x spacing] [--out RUN_DIR/fig6.png]
                    [--metric max_error] [--title TEXT] [--where KEY=VALUE ...] [--independent-y]
                    [--time-stat median|mean]
 

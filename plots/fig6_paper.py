@@ -2,7 +2,7 @@
 """The complete Fig. 6 of Williams & Lau 2014 (bp-marginal-association), from three runs.
 
 Usage:
-  /usr/bin/python3 plots/fig6_paper.py [--exp1 RUN1/summary.csv] [--exp2 RUN2/summary.csv]
+  /usr/bin/python3 -m plots.fig6_paper [--exp1 RUN1/summary.csv] [--exp2 RUN2/summary.csv]
                    [--exp3 RUN3/summary.csv] [--out results/bp-paper/fig6.png]
                    [--metric max_error] [--show-reference-error] [--independent-y]
                    [--time-unit auto|us|ms|s] [--time-stat median|mean] [--no-bands] [--title TEXT]
@@ -30,7 +30,7 @@ The time axes show the median time per problem with its 5-95 % band by default: 
 machine the mean is dominated by the rare calls another job preempts. `--time-stat mean` draws
 the paper's average time per problem with +-2 standard errors. Axis labels and title say which.
 
-bp_paper_report.py imports the data model (PaperData) and the input options (add_input_arguments,
+experiments/bp_paper/rules.py imports the data model (PaperData) and the input options (add_input_arguments,
 read_inputs) from this file.
 """
 
@@ -43,9 +43,8 @@ import sys
 import textwrap
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import fig6  # noqa: E402  (CSV reading, styles, log axes, saving)
-from fig6 import fail, fnum, note  # noqa: E402
+from plots import fig6
+from plots.fig6 import fail, fnum, note
 
 plt = fig6.plt
 np = fig6.np
@@ -409,7 +408,7 @@ def pretty_label(spec):
 
 def add_input_arguments(ap):
     """--exp1, --exp1-extra, --exp2, --exp3: the runs of the three experiments (the options of
-    this script and of bp_paper_report.py); read them with read_inputs."""
+    this script and of experiments/bp_paper/rules.py); read them with read_inputs."""
     ap.add_argument("--exp1", metavar="CSV", help="summary.csv of experiment 1 (2×3 grid, seven panels)")
     ap.add_argument("--exp1-extra", metavar="CSV", action="append", default=[],
                     help="summary.csv of another experiment-1 run over the same points; adds the "

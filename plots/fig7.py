@@ -2,7 +2,7 @@
 """Fig. 7 of Williams & Lau 2014 (bp-marginal-association): BP's convergence parameter W* vs. a sweep.
 
 Usage:
-  /usr/bin/python3 plots/fig7.py RUN_DIR/summary.csv [--where pd=0.9] [--algorithm bp] [--x spacing]
+  /usr/bin/python3 -m plots.fig7 RUN_DIR/summary.csv [--where pd=0.9] [--algorithm bp] [--x spacing]
                    [--out RUN_DIR/fig7.png] [--title TEXT] [--logy]
 
 Draws the mean of W* (solid blue) and its 5th and 95th percentiles over the trials (dashed
@@ -16,9 +16,8 @@ import os
 import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import fig6  # noqa: E402  (shared CSV reading, sweep structure and saving)
-from fig6 import fail, note  # noqa: E402
+from plots import fig6
+from plots.fig6 import fail, note
 
 plt = fig6.plt
 np = fig6.np

@@ -2,11 +2,11 @@
 """Fig. 7 of JDT-VB (jdt-vb-multipath-othr, Sec. IV-B3): tracking metrics versus VB iteration.
 
 Usage:
-  /usr/bin/python3 plots/jdtvb_fig7.py RUN_DIR/iterations.csv [--algorithm jdt-vb]
+  /usr/bin/python3 -m plots.jdtvb_fig7 RUN_DIR/iterations.csv [--algorithm jdt-vb]
                    [--metrics nvt,tpd,...] [--bands] [--out RUN_DIR/jdtvb_fig7.png] [--title TEXT]
 
 Reads iterations.csv, written by `dabench run` for a tracking experiment with
-`iterations = true` (e.g. experiments/jdtvb-fig7.ini): one row per (sweep point, run,
+`iterations = true` (e.g. experiments/jdtvb/fig7.ini): one row per (sweep point, run,
 tracker, iteration r), r = 0 being the tracks before the first iteration. Draws one panel per
 metric (default NVT, TPD, NFT, TTL, AEE-R, AEE-B, MOSPA) against r = 0..R, R the largest
 iteration any run reached, with one line per setting (sweep point: pd and N_c, and any other
@@ -60,7 +60,7 @@ def read_runs(path, algorithm, metrics):
     and the names of the parameters that vary between points."""
     if not os.path.exists(path):
         raise PlotError(f"{path}: missing (run an experiment with 'iterations = true', e.g. "
-                        "experiments/jdtvb-fig7.ini)")
+                        "experiments/jdtvb/fig7.ini)")
     lines = {}
     try:
         with open(path, newline="") as f:

@@ -4,7 +4,7 @@ summary.csv: per setting (sweep point) and tracker, NVT, TPD, NFT, TTL, AEE-R (k
 (mrad), MOSPA and TET (s) as mean +- standard error over the Monte Carlo runs.
 
 Usage:
-  /usr/bin/python3 plots/jdtvb_table.py RUN_DIR/summary.csv [--paper] [--out table.md]
+  /usr/bin/python3 -m plots.jdtvb_table RUN_DIR/summary.csv [--paper] [--out table.md]
 
 With --paper, each setting that is one of the paper's (pd in {0.75, 0.4}, N_c in {125, 400},
 and, where the columns exist, scans 30, scan_interval 16, process_psd 1e-8) is followed by the

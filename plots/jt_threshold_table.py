@@ -1,14 +1,14 @@
 #!/usr/bin/python3
 """Which quantity does Williams & Lau 2014 threshold before its junction tree? A Markdown table
-from the summary.csv of experiments/jt-threshold-reading.ini: for each reading of the threshold
+from the summary.csv of experiments/bp_paper/jt-threshold-reading.ini: for each reading of the threshold
 (jt's threshold_on) and each τ, how JT's average max error compares with BP's over the sweep
 points, next to the paper's three statements (Sec. V-B):
   τ = 0.1 "globally worse than BP, often much worse";
   τ = 0.01 and 0.001 "generally much better than BP".
 
-Usage: /usr/bin/python3 plots/jt_threshold_table.py RUN_DIR/summary.csv
+Usage: /usr/bin/python3 -m plots.jt_threshold_table RUN_DIR/summary.csv
 
-reports/studies/bp_paper.py computes the same table with errors(), readings() and compare().
+experiments/bp_paper/__init__.py computes the same table with errors(), readings() and compare().
 """
 
 import csv

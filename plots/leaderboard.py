@@ -2,9 +2,9 @@
 """The single-scan leaderboard figure: error against time, one panel per scenario panel.
 
 Usage:
-  /usr/bin/python3 plots/leaderboard.py PANELS.csv [PANELS.csv ...] --out FIG.png
+  /usr/bin/python3 -m plots.leaderboard PANELS.csv [PANELS.csv ...] --out FIG.png
 
-Reads the panels.csv digests that reports/studies/leaderboard.py writes (per panel and
+Reads the panels.csv digests that experiments/leaderboard/__init__.py writes (per panel and
 algorithm: the mean of max_error over the panel's trials and the quartiles of max_error and
 time_us). Each algorithm is one marker at (median time per trial, mean max error), with bars from
 the 25th to the 75th percentile of each over the same trials; the grey staircase is the Pareto
@@ -16,12 +16,10 @@ Writes a PNG and an SVG."""
 import argparse
 import csv
 import math
-import os
 import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import fig6  # noqa: E402  (saving, error reporting)
+from plots import fig6
 
 plt = fig6.plt
 
@@ -107,7 +105,7 @@ def draw_panel(ax, title, rows, styles):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog=fig6.PROG, description=__doc__.splitlines()[0])
-    ap.add_argument("panels", nargs="+", help="panels.csv digests (reports/digest.py leaderboard)")
+    ap.add_argument("panels", nargs="+", help="panels.csv digests (python3 -m reports.digest leaderboard)")
     ap.add_argument("--out", required=True, help="output PNG (an SVG is written next to it)")
     args = ap.parse_args(argv)
     panels = read_panels(args.panels)

@@ -4,7 +4,7 @@ CDFs over targets of the HPD value of the true location (top, with the x = y lin
 calibrated belief) and of the belief's entropy (bottom), one line per algorithm.
 
 Usage:
-  /usr/bin/python3 plots/multiscan_cdf.py RUN_DIR/targets.csv [--out RUN_DIR/multiscan_cdf.png]
+  /usr/bin/python3 -m plots.multiscan_cdf RUN_DIR/targets.csv [--out RUN_DIR/multiscan_cdf.png]
                    [--title TEXT]
 
 Reads targets.csv (one row per point, trial, algorithm and target, written by `dabench run` for

@@ -6,7 +6,7 @@ sweeps of Algorithm 2, BP iterations of JPDA-BP), the mean line-search steps, ho
 the stopping rule, and the largest final column residual and inner residual (column-dual solver).
 
 Usage:
-  /usr/bin/python3 plots/multiscan_cost.py RUN_DIR/trials.csv [--out table.md]
+  /usr/bin/python3 -m plots.multiscan_cost RUN_DIR/trials.csv [--out table.md]
 
 Exit status 2 with a one-line message when the input cannot be used.
 """

@@ -3,7 +3,7 @@
 multipath detections of the targets and the clutter over all scans of one run.
 
 Usage:
-  /usr/bin/python3 plots/othr_scenario.py RUN_DIR [--where pd=0.75,clutter=125 | --point N]
+  /usr/bin/python3 -m plots.othr_scenario RUN_DIR [--where pd=0.75,clutter=125 | --point N]
                    [--out RUN_DIR/othr_scenario.png] [--title TEXT]
 
 Reads RUN_DIR/tracks.csv (the truth rows, algorithm `truth`) and RUN_DIR/measurements.csv,
@@ -23,13 +23,12 @@ import os
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from othr_run import (  # noqa: E402
+from plots.othr_run import (
     PATH_NAMES, PlotError, fail, parse_where, point_title, read_point_rows, run_file, save_figure)
 
 SCRIPT = "othr_scenario.py"

@@ -3,7 +3,7 @@
 tracker, over the true trajectories.
 
 Usage:
-  /usr/bin/python3 plots/othr_tracks.py RUN_DIR [--where pd=0.75,clutter=125 | --point N]
+  /usr/bin/python3 -m plots.othr_tracks RUN_DIR [--where pd=0.75,clutter=125 | --point N]
                    [--trial 0] [--all] [--min-length 1] [--plane]
                    [--out RUN_DIR/othr_tracks.png] [--title TEXT]
 
@@ -24,13 +24,12 @@ import os
 import sys
 
 sys.dont_write_bytecode = True
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from othr_run import PlotError, fail, parse_where, point_title, read_point_rows, run_file, save_figure  # noqa: E402
+from plots.othr_run import PlotError, fail, parse_where, point_title, read_point_rows, run_file, save_figure
 
 SCRIPT = "othr_tracks.py"
 

@@ -2,23 +2,23 @@
 """The track-before-detect figures (tbd-bp-supplement Figs 1-4; the letter's Fig. 2).
 
 Usage:
-  /usr/bin/python3 plots/tbd_figures.py toy RUN_DIR [--point P] [--out FILE]
+  /usr/bin/python3 -m plots.tbd_figures toy RUN_DIR [--point P] [--out FILE]
                                                                        supplement Fig. 1
-  /usr/bin/python3 plots/tbd_figures.py run RUN_DIR [--point P] [--steps 14,21,27,43] [--out FILE]
+  /usr/bin/python3 -m plots.tbd_figures run RUN_DIR [--point P] [--steps 14,21,27,43] [--out FILE]
                                                                        supplement Figs 2 and 3
-  /usr/bin/python3 plots/tbd_figures.py gospa RUN_DIR [--point P] [--column gospa] [--out FILE]
+  /usr/bin/python3 -m plots.tbd_figures gospa RUN_DIR [--point P] [--column gospa] [--out FILE]
                                                                        the letter's Fig. 2
-  /usr/bin/python3 plots/tbd_figures.py runtime RUN_DIR [--time-stat median|mean] [--out FILE]
+  /usr/bin/python3 -m plots.tbd_figures runtime RUN_DIR [--time-stat median|mean] [--out FILE]
                                                                        supplement Fig. 4
 
 RUN_DIR is the output folder of `dabench run` on a track-before-detect experiment:
-  toy      (experiments/tbd-toy-fig1a.ini or tbd-toy.ini, `beliefs = true`): at one sweep point
+  toy      (experiments/tbd/toy-fig1a.ini or tbd/toy.ini, `beliefs = true`): at one sweep point
            (a reading), as the supplement's Fig. 1: (a) the frame's cell magnitudes |z_j| with the
            two objects, (c) the prior alpha_1 (N(p_1, 0.3 I), drawn analytically; toy layout
            only) and, per tracker, the belief of potential object 1 (label 0) of beliefs.csv over
            p_1 +- 1 m ([3, 5]^2) as a Gaussian kernel density estimate, with the supplement's
            read-off peak of the matching panel (d), (e) or (f), our mean and our mode (the KDE's
-           maximum, as reports/studies/tbd_toy.py); prints the mean and mode per tracker.
+           maximum, plots/particle_density.py, as in the tbd REPORT); prints the mean and mode per tracker.
   run      trial 0 of a point: |z_j| of frames.csv at the given steps with the true tracks and
            positions (estimates.csv, algorithm `truth`) and each tracker's estimates at that
            step; and GOSPA over k of that trial per tracker (steps.csv).
@@ -48,8 +48,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from reports.studies.tbd_toy import kde_mode  # noqa: E402  (the REPORT's mode of a belief)
+from plots.particle_density import belief_density, kde_mode  # noqa: E402  (the REPORT's mode of a belief)
 
 SCRIPT = "tbd_figures.py"
 
@@ -101,7 +100,7 @@ def frame_image(frames, point, k):
 
 
 # The supplement's Fig. 1 (d), (e), (f): where PO 1's belief peaks, read off the panels (m);
-# reports/studies/tbd_toy.py holds the same readings for the REPORT's verdicts.
+# experiments/tbd/toy.py holds the same readings for the REPORT's verdicts.
 FIG1_PEAKS = {"d": (4.47, 4.31), "e": (4.14, 4.13), "f": (4.25, 4.12)}
 TOY_PRIOR_VARIANCE = 0.3  # m²: α_n = N(p_n, 0.3 I) of the toy layout (scenarios/tbd/tbd.cpp)
 TOY_WINDOW = 1.0  # m: the belief panels show p_1 ± 1 m, the supplement's [3, 5]²
@@ -124,7 +123,7 @@ def fig1_panel(spec):
 
 def po1_particles(beliefs, spec):
     """PO 1's (label 0) particles of a tracker as (xy [n, 2], normalised weights), identical
-    particles pooled as in reports/studies/tbd_toy.py (a resampled belief repeats them)."""
+    particles pooled as in experiments/tbd/toy.py (a resampled belief repeats them)."""
     pooled = defaultdict(float)
     for r in beliefs:
         if r["algorithm"] == spec and r["label"] == "0":
@@ -133,15 +132,6 @@ def po1_particles(beliefs, spec):
         fail(f"toy: beliefs.csv has no particle of PO 1 (label 0) for {spec}")
     w = np.array(list(pooled.values()))
     return np.array(list(pooled)), w / np.sum(w)
-
-
-def belief_density(xy, w, sd, xs, ys):
-    """The Gaussian kernel density estimate of weighted particles on the grid xs × ys ([y, x]),
-    with the bandwidth of tbd_toy.kde_mode (Scott's per axis: sd · ESS^(-1/6))."""
-    h = np.maximum(sd * np.sum(w * w) ** (1.0 / 6.0), 1e-9)
-    gx, gy = (np.exp(-0.5 * ((grid[:, None] - xy[None, :, i]) / h[i]) ** 2) / (math.sqrt(2 * math.pi) * h[i])
-              for i, grid in enumerate((xs, ys)))
-    return (gy * w[None, :]) @ gx.T
 
 
 def small_colorbar(fig, shown, ax, text):

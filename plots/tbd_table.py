@@ -2,10 +2,10 @@
 """The track-before-detect comparison as Markdown tables (results/tbd/REPORT.md).
 
 Usage:
-  /usr/bin/python3 plots/tbd_table.py RUN_DIR [--point P]
+  /usr/bin/python3 -m plots.tbd_table RUN_DIR [--point P]
 
 RUN_DIR is the output folder of `dabench run` on a track-before-detect experiment (e.g.
-experiments/tbd-gospa.ini). Prints, for sweep point P (default 0):
+experiments/tbd/gospa.ini). Prints, for sweep point P (default 0):
   1. per tracker: runs, the averaged GOSPA (p = 1) over k as its mean over k with +-2 standard
      errors (over runs, of each run's mean over k), the same for GOSPA with p = 2, its
      localisation / missed / false parts (mean per step), mean estimates per step and the mean

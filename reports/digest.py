@@ -1,25 +1,20 @@
 #!/usr/bin/python3
 """Write a study's digests: small committed files computed from large per-trial files that are
-not committed (e.g. TBD's steps.csv), so that the REPORT's checks read committed data only.
+not committed (e.g. TBD's steps.csv), so that the render.REPORT's checks read committed data only.
 
-Usage: /usr/bin/python3 reports/digest.py STUDY [--root DIR]"""
+Usage: /usr/bin/python3 -m reports.digest STUDY [--root DIR]"""
 
 import argparse
-import os
 import sys
 
-sys.dont_write_bytecode = True
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, REPO)
-
-from reports import render  # noqa: E402
-from reports.core import data  # noqa: E402
+from reports import render
+from reports.core import data
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("name", metavar="STUDY")
-    ap.add_argument("--root", default=REPO)
+    ap.add_argument("--root", default=render.REPO)
     args = ap.parse_args(argv)
     known = {n: render.load(n) for n in render.STUDY_NAMES if n == args.name}
     s = known.get(args.name)

@@ -4,7 +4,7 @@
 # (BP vs exact on the 2×3 grid baseline of Fig. 6) into out/quickstart/ (ignored by git), render
 # its figure, and compare its numbers with the committed reference run in results/quickstart/
 # (reports/quickstart_check.py). It writes no tracked file: the committed run changes only
-# through `reports/rerun.py readme`.
+# through `python3 -m reports.rerun readme`.
 # Environment: DABENCH_QUICKSTART_TRIALS=N runs the first N of the 10 000 trials per spacing
 # (for N = 100, 200, 1000 compared bit for bit with the digest the committed run recorded of its
 # own first N trials; other N are not compared);
@@ -17,7 +17,7 @@ trials=()
 bash scripts/setup.sh
 bash scripts/build.sh dabench
 ./build/dabench run experiments/quickstart.ini --out "$out" --force "${trials[@]}"
-/usr/bin/python3 plots/fig6.py "$out/summary.csv" --out "$out/fig6.png" \
+/usr/bin/python3 -m plots.fig6 "$out/summary.csv" --out "$out/fig6.png" \
   --title "2x3 grid, Pd = 0.6, lambda_fa = 0.01, r = 1"
 echo
 echo "Results of the quick start are in $out/:"

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Records the last `scripts/test.sh` run's step times and slowest test cases for the tables of
-docs/tests.md (reports/studies/readme.py renders both tables from what this appends):
+docs/tests.md (experiments/readme/__init__.py renders both tables from what this appends):
   tests/timings/steps.csv   run, commit, date, cores, build, step, wall_s, cpu_s (one row per step
                             of build-logs/steps.tsv, the last its `all total` row: the run's wall time)
   tests/timings/cases.csv   run, build, case, seconds (the ten slowest ctest entries of each build)

@@ -10,7 +10,7 @@ packages=(
   catch2 libbenchmark-dev
   libopenmpi-dev openmpi-bin
   python3-matplotlib python3-numpy python3-scipy python3-pandas python3-pytest python3-dev pybind11-dev
-  python3-venv python3-pip python3-setuptools python3-wheel mkdocs
+  python3-venv python3-pip python3-setuptools python3-wheel mkdocs pyflakes3
   clang-14 libclang-rt-14-dev libomp-14-dev llvm-14 lld-14
 )
 missing=()

@@ -1,5 +1,6 @@
 // dabench list: the registered algorithms, trackers and scenarios with their parameters and
 // defaults, and the experiment files.
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
@@ -40,11 +41,16 @@ int run_list(const Invocation& invocation) {
   }
   const fs::path folder = experiments_folder();
   out += fmt::format("\nExperiments (in {}):\n", folder.string());
+  // A study keeps its experiment files in a folder of its own (experiments/<study>/): listed by
+  // their path under the experiments folder, in path order.
   std::set<fs::path> files;
   std::error_code error;
-  for (const auto& file : fs::directory_iterator(folder, error)) {
-    if (file.path().extension() == ".ini") files.insert(file.path());
+  for (auto entry = fs::recursive_directory_iterator(folder, error); !error && entry != fs::recursive_directory_iterator();
+       entry.increment(error)) {
+    if (entry->is_regular_file() && entry->path().extension() == ".ini") files.insert(entry->path());
   }
+  std::size_t name_width = 0;
+  for (const auto& file : files) name_width = std::max(name_width, file.lexically_relative(folder).generic_string().size());
   for (const auto& file : files) {
     std::string description;
     try {
@@ -52,7 +58,7 @@ int run_list(const Invocation& invocation) {
     } catch (const InputError& problem) {
       description = fmt::format("(unreadable: {})", printable(problem.what()));
     }
-    out += fmt::format("  {:<28} {}\n", file.filename().string(), description);
+    out += fmt::format("  {:<{}} {}\n", file.lexically_relative(folder).generic_string(), name_width, description);
   }
   print_stdout(out);
   return 0;

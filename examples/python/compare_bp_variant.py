@@ -51,8 +51,8 @@ def main():
     print("average max marginal error against exact (rows: spacing)")
     print(table.loc[[0.0, 1.0, 1.25, 2.0, 5.0, 10.0]].to_string(float_format=lambda v: f"{v:.5f}"))
     figure = Path(args.out) / "fig6.png"
-    subprocess.run([sys.executable, ROOT / "plots" / "fig6.py", Path(args.out) / "summary.csv", "--out", figure,
-                    "--title", "2x3 grid, Pd = 0.6, lambda_fa = 0.01, r = 1: a numpy BP variant"], check=True)
+    subprocess.run([sys.executable, "-m", "plots.fig6", Path(args.out).resolve() / "summary.csv", "--out", figure.resolve(),
+                    "--title", "2x3 grid, Pd = 0.6, lambda_fa = 0.01, r = 1: a numpy BP variant"], check=True, cwd=ROOT)
     print(f"figure: {figure}")
 
 

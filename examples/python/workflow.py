@@ -34,7 +34,7 @@ args = parser.parse_args()
 
 # %% 1. One trial of the study's baseline panel: the experiment file says the scenario, its
 # parameters and the seed; `point` is the sweep point (spacing 0, 0.5, ..., so point 2 is spacing 1).
-problem = dabench.draw(str(ROOT / "experiments" / "bp-paper-fig6-exp1.ini"), trial=7, point=2)
+problem = dabench.draw(str(ROOT / "experiments" / "bp_paper/fig6-exp1.ini"), trial=7, point=2)
 psi = problem["psi"]
 print(f"spacing {problem['params']['spacing']}: {psi.shape[0]} targets, {psi.shape[1]} measurements")
 
@@ -61,7 +61,7 @@ dabench.register("independent-pda", independent_pda, params={"clutter_scale": 1.
 print("independent-pda on the trial:", np.abs(dabench.marginals(psi, "independent-pda") - exact).max())
 
 # %% 4. The panel: bp and the numpy algorithm against exact on identical trials — the study's own
-# (experiments/bp-paper-fig6-exp1.ini's baseline: same scenario, seed and points, so bp's rows are
+# (experiments/bp_paper/fig6-exp1.ini's baseline: same scenario, seed and points, so bp's rows are
 # those of results/bp-paper/fig6-exp1-bp-vs-exact).
 experiment = """scenario = grid
 trials = 1000

@@ -59,13 +59,14 @@ class Claim:
 class Study:
     name: str  # e.g. "jdtvb"
     report: str  # the file rendered, e.g. "results/jdtvb/REPORT.md"
-    template: str  # e.g. "reports/templates/jdtvb.md"
+    template: str  # e.g. "experiments/jdtvb/template.md"
     runs: list
     steps: list
     checks: object  # function(Report) -> None
     digest: object = None  # function(root) -> [files written]: digests of large per-trial files
     lint: bool = True  # lint the template's prose for numbers (not for the README)
     pages: tuple = ()  # more (template, file) pairs rendered from the same checks (the README's docs pages)
+    needs: tuple = ()  # studies whose values the checks read (report.studies[name]): the README's headlines
 
 
 class Report:
@@ -75,6 +76,7 @@ class Report:
         self.study, self.root = study, root
         self.values = {}
         self.claims = []
+        self.studies = {}  # the Reports of the studies this one needs (Study.needs), by name
 
     def value(self, name, text):
         if name in self.values:
@@ -115,10 +117,32 @@ class Report:
         counts = Counter(c.verdict for c in chosen)
         return ", ".join(f"{counts[v]} {v}" for v in verdicts.VERDICTS if counts[v])
 
+    def headline(self, what, ids=None):
+        """The value "headline": the verdict counts of the claims a study leads with (ids; all by
+        default), as the README's list of studies shows them: "N <what>: counts"."""
+        n = len([c for c in self.claims if ids is None or c.id in ids])
+        self.value("headline", f"{n} {what}: {self.verdict_counts(ids)}")
+
 
 # ----------------------------------------------------------------------------- provenance
 
 COMMENT_LINE = re.compile(r"^\s*[#;]")
+MOVED = "experiments/moved.csv"  # experiment files that moved after a committed run recorded them
+
+
+def moved_paths(root):
+    """{old path: new path} of MOVED under root: a run made before a move names the old path in
+    its meta.json (command_line, experiment_path and any file the experiment reads)."""
+    if not os.path.exists(os.path.join(root, MOVED)):
+        return {}
+    return {r["old_path"]: r["new_path"] for r in data.read_rows(root, MOVED)}
+
+
+def with_moves(text, moves):
+    """text with every moved path, as a whole word, replaced by its new path."""
+    for old, new in moves.items():
+        text = re.sub(r"(?<![\w./-])" + re.escape(old) + r"(?![\w./-])", new, text)
+    return text
 
 
 def experiment_body(text):
@@ -188,13 +212,14 @@ def provenance(root, run):
                         f"source_modified {modified}); rerun it from a clean commit")
     if meta.get("status") != "complete":
         problems.append(f"{run.folder}: run not complete ({meta.get('status')})")
-    if command_words(meta.get("command_line", "")) != command_words(run.command):
+    moves = moved_paths(root)
+    if command_words(with_moves(meta.get("command_line", ""), moves)) != command_words(run.command):
         problems.append(f"{run.folder}: made by `{meta.get('command_line')}`, the study lists `{run.command}`")
-    experiment = meta.get("experiment_path", "")
+    experiment = moves.get(meta.get("experiment_path", ""), meta.get("experiment_path", ""))
     ini = os.path.join(root, experiment)
     if os.path.exists(ini):
         with open(ini, encoding="utf-8") as f:
-            if experiment_body(f.read()) != experiment_body(meta.get("experiment", "")):
+            if experiment_body(f.read()) != experiment_body(with_moves(meta.get("experiment", ""), moves)):
                 problems.append(f"{run.folder}: {experiment} has changed since the run; rerun it")
     else:
         problems.append(f"{run.folder}: its experiment {experiment} is not in the tree")

@@ -1,6 +1,6 @@
 #pragma once
 // A frame of cell magnitudes |z_j| read from a text file: how the supplement's Fig. 1(a) (the
-// toy example's frame, digitised into experiments/data/tbd-fig1a-frame.csv) enters a run.
+// toy example's frame, digitised into experiments/tbd/fig1a-frame.csv) enters a run.
 //
 // Format: lines starting with '#' are comments; then one line per row of cells, the bottom row
 // (y = y_min + Δ/2) first, `columns` comma-separated magnitudes per line, left (x = x_min + Δ/2)

@@ -53,7 +53,7 @@ namespace dabench {
 enum class TbdLayout { crossing, persistent, toy };
 
 // D3's parameters, fitted to the supplement's Fig. 1(a) and Fig. 2 (results/tbd/REPORT.md,
-// "Calibration of D3"; reports/studies/tbd_calibration.py checks that they are the fit).
+// "Calibration of D3"; experiments/tbd/calibration.py checks that they are the fit).
 constexpr double kMeanShareD3 = 0.66;
 constexpr double kSpreadD3 = 0.58;
 

@@ -64,6 +64,9 @@ TEST_CASE("cli list: names algorithms with parameters and scenarios and experime
     return result.out.find_first_not_of(' ', line + 3 + name.size()) - line;
   };
   CHECK(summary_column("bp") == summary_column("modified-cheap-jpda"));
+  // A study's experiment files are listed by their path under experiments/, aligned the same way.
+  CHECK(summary_column("quickstart.ini") == summary_column("multiscan/reading-corner-grouped.ini"));
+  CHECK(summary_column("bp_paper/exp1.ini") == summary_column("quickstart.ini"));
 }
 
 TEST_CASE("cli help: prints the usage on stdout", "[cli]") {

@@ -1,5 +1,5 @@
 // Tests of the frame file of the toy (scenarios/tbd/magnitude_frame.hpp): the supplement's
-// Fig. 1(a), digitised in experiments/data/tbd-fig1a-frame.csv, read cell by cell; malformed
+// Fig. 1(a), digitised in experiments/tbd/fig1a-frame.csv, read cell by cell; malformed
 // files are one-line errors naming the file and line; the toy scenario with `frame` uses the
 // file's frame and draws nothing.
 #include <catch2/catch.hpp>
@@ -22,7 +22,7 @@ namespace {
 
 using dabench::read_magnitude_frame;
 
-const std::string kFig1a = std::string(DABENCH_SOURCE_DIR) + "/experiments/data/tbd-fig1a-frame.csv";
+const std::string kFig1a = std::string(DABENCH_SOURCE_DIR) + "/experiments/tbd/fig1a-frame.csv";
 
 // A file under the temporary folder holding `text`; removed with the object.
 struct TextFile {

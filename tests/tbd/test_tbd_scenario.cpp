@@ -277,7 +277,7 @@ TEST_CASE("tbd scenario: the d3 signal is a mean sqrt(rho gamma) g_j e_1 plus (1
   d1.generate(rng_a, a);
   d3.generate(rng_b, b);
   for (int k = 0; k < a.problem.steps(); ++k) CHECK(a.problem.frames[k] == b.problem.frames[k]);
-  // The defaults are the fit of results/tbd/REPORT.md (reports/studies/tbd_calibration.py).
+  // The defaults are the fit of results/tbd/REPORT.md (experiments/tbd/calibration.py).
   const TbdImageScenario defaults = scenario_from({{"signal", "d3"}});
   CHECK(defaults.sensor().mean_share == dabench::kMeanShareD3);
   CHECK(defaults.sensor().spread_variance == dabench::kSpreadD3);
@@ -522,7 +522,7 @@ TEST_CASE("tbd scenario: bad options are one-line errors naming the field", "[tb
   CHECK_THAT(message({{"layout", "diagonal"}}), Contains("layout") && Contains("crossing, persistent, toy"));
   CHECK_THAT(message({{"signal", "d4"}}), Contains("signal") && Contains("d1, d2, d3"));
   CHECK_THAT(message({{"mean_share", "1.5"}}), Contains("mean_share = 1.5"));
-  CHECK_THAT(message({{"frame", "experiments/data/tbd-fig1a-frame.csv"}}), Contains("frame") && Contains("layout = toy"));
+  CHECK_THAT(message({{"frame", "experiments/tbd/fig1a-frame.csv"}}), Contains("frame") && Contains("layout = toy"));
   CHECK_THAT(message({{"layout", "toy"}, {"frame", "/dev/zero"}}), Contains("/dev/zero: not a regular file"));
   CHECK_THAT(message({{"layout", "toy"}, {"objects", "3"}}), Contains("objects = 3") && Contains("toy"));
   CHECK_THAT(message({{"layout", "toy"}, {"rows", "12"}}), Contains("rows = 12") && Contains("toy"));

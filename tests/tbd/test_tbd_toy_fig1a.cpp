@@ -1,5 +1,5 @@
 // The supplement's toy (Sec. 1.3, Fig. 1) on the supplement's own frame (Fig. 1(a), digitised:
-// experiments/data/tbd-fig1a-frame.csv), under the default reading D1: where TBD-BP puts PO 1's
+// experiments/tbd/fig1a-frame.csv), under the default reading D1: where TBD-BP puts PO 1's
 // belief without interaction, with κ̃ and with the exact κ (L = 1), against the peaks read off
 // panels (d), (e), (f) — (4.47, 4.31), (4.14, 4.13), (4.25, 4.12). A peak is read off a panel
 // with 0.5 m ticks to about 0.15 m per coordinate; the belief mean's Monte Carlo error at 2000
@@ -22,7 +22,7 @@ namespace DABENCH_TEST_FILE {
 
 namespace {
 
-const std::string kFig1a = std::string(DABENCH_SOURCE_DIR) + "/experiments/data/tbd-fig1a-frame.csv";
+const std::string kFig1a = std::string(DABENCH_SOURCE_DIR) + "/experiments/tbd/fig1a-frame.csv";
 
 // PO 1's belief mean after the toy's one step under `options`.
 Eigen::Vector2d belief_of_po1(const dabench::TbdBpOptions& options) {

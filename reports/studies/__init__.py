@@ -1,1 +1,0 @@
-"""One module per study: its runs, its figures, and the checks that fill its REPORT template."""
