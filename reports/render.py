@@ -5,8 +5,10 @@ Usage (from the repository root; paths are relative to it):
   /usr/bin/python3 -m reports.render [STUDY ...]           write the files
   /usr/bin/python3 -m reports.render --check [STUDY ...]   exit 1 if a file differs from what the
                                                             committed data give, a template states a
-                                                            number no check produced, or a run cannot
-                                                            be traced to a clean commit
+                                                            number no check produced, a run cannot
+                                                            be traced to a clean commit, or a committed
+                                                            data file is not the one results/SHA256SUMS
+                                                            lists (reports/manifest.py)
   --root DIR   render the tree under DIR instead of the repository: its data (results/,
                experiments/) and its REPORTs (templates and checks stay the repository's)
   --list       the studies, their templates and runs
@@ -20,6 +22,7 @@ import os
 import sys
 
 from experiments import bp_paper, jdtvb, leaderboard, multiscan, readme, tbd
+from reports import manifest
 from reports.core import data, study as study_core, template
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -149,6 +152,11 @@ def main(argv=None):
                 print(target if not problems else f"{target} ({len(problems)} problems above)")
         if args.check and problems:
             status = 1
+    data_problems = manifest.problems(args.root)
+    for p in data_problems:
+        print(f"render.py: {p}", file=sys.stderr)
+    if args.check and data_problems:
+        status = 1
     return status
 
 

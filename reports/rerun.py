@@ -26,6 +26,7 @@ def main(argv=None):
     s = known[args.name]
     runs = [] if args.steps_only else [r for r in s.runs if not args.only or r.folder in args.only]
     commands = [r.command for r in runs] + [step.command for step in s.steps]
+    commands.append("/usr/bin/python3 -m reports.manifest")  # the rerun's files, listed for --check
     commands.append(f"/usr/bin/python3 -m reports.render {s.name}")
     for command in commands:
         print(f"rerun.py: {command}", flush=True)

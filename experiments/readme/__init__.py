@@ -4,73 +4,23 @@ the multi-scan paper's Algorithm 2 against the column-dual Newton solver, the Op
 measurements (efficiency, the writer's capacity, and the core counts derived from them) and the
 test command's times, each from committed runs and records."""
 
-import csv
-import io
 import math
-import subprocess
-from pathlib import Path
 
 from reports.core import data, markdown, verdicts
-from reports.core.study import Claim, Run, Step, Study
+from experiments.readme import scheduling
+from experiments.readme.runs import CLUSTER, PAIRS, QUICKSTART, RUNS, STEPS
+from reports.core.study import Claim, Study
 
-QUICKSTART = "results/quickstart"
-CLUSTER = "results/cluster"
 ALGORITHM2 = "results/multiscan/algorithm2-cost"
 ALGORITHM2_1000 = "results/multiscan/algorithm2-cost-1000"
 DERIVED_FROM = "results/multiscan/fig4"  # the study whose per-item cost the derived core count uses
 BP_PAPER_BOUND = 0.015  # bp-marginal-association Sec. V-B: "average errors of 0.015 or less in most cases"
-MPI = "mpirun --allow-run-as-root"
-PAIRS = ["a", "b"]
 FUZZ_LONG_RUNS = "tests/fuzz/long-runs.csv"  # written by FUZZ_RECORD=tests/fuzz/long-runs.csv scripts/fuzz.sh SECONDS
 FUZZ_TARGETS = ["experiment", "weights", "shard_meta", "spec"]  # tests/fuzz/CMakeLists.txt
 TEST_STEPS = "tests/timings/steps.csv"  # written by scripts/record_test_timings.py after scripts/test.sh
 TEST_CASES = "tests/timings/cases.csv"
 TEST_RUN_ORDER = ["before", "cold", "warm", "fast"]  # the columns of docs/tests.md's table; other labels follow
 
-RUNS = [Run(QUICKSTART, "./build/dabench run experiments/quickstart.ini --out results/quickstart --force",
-            "the quick start's reference run")]
-RUNS += [
-    Run(f"{CLUSTER}/throughput-threads2",
-        "./build/dabench run experiments/readme/bp-throughput.ini --threads 2 --force --out results/cluster/throughput-threads2"),
-    Run(f"{CLUSTER}/throughput-np2",
-        f"{MPI} -np 2 ./build/dabench run experiments/readme/bp-throughput.ini --threads 1 --force "
-        "--out results/cluster/throughput-np2"),
-    Run(f"{CLUSTER}/throughput-np3",
-        f"{MPI} --oversubscribe -np 3 ./build/dabench run experiments/readme/bp-throughput.ini --threads 1 --force "
-        "--out results/cluster/throughput-np3"),
-]
-for _pair in PAIRS:
-    RUNS += [
-        Run(f"{CLUSTER}/efficiency-threads2-{_pair}",
-            "./build/dabench run experiments/readme/cluster-efficiency.ini --threads 2 --force "
-            f"--out results/cluster/efficiency-threads2-{_pair}"),
-        Run(f"{CLUSTER}/efficiency-np2-{_pair}",
-            f"{MPI} -np 2 ./build/dabench run experiments/readme/cluster-efficiency.ini --threads 1 --force "
-            f"--out results/cluster/efficiency-np2-{_pair}"),
-    ]
-SCHEDULE_RUNS = {  # fig3 at 8 trials, as issue 31 measures the work queue: 1 and 2 threads, and 2 with --costs-from
-    "threads1": "--threads 1",
-    "threads2": "--threads 2",
-    "threads2-costs-from": "--threads 2",
-}
-for _name, _threads in SCHEDULE_RUNS.items():
-    RUNS.append(Run(f"{CLUSTER}/schedule-fig3-8-{_name}",
-                    f"./build/dabench run experiments/multiscan/fig3.ini --trials 8 {_threads} --force "
-                    f"--out results/cluster/schedule-fig3-8-{_name}"
-                    + (f" --costs-from {CLUSTER}/schedule-fig3-8-threads1" if _name.endswith("costs-from") else "")))
-# The committed studies whose wall time docs/clusters.md predicts for 16, 64 and 256 workers.
-SCHEDULE_STUDIES = [
-    ("quick start", QUICKSTART), ("BP paper, experiment 1", "results/bp-paper/exp1"),
-    ("BP paper, experiment 2", "results/bp-paper/exp2"), ("BP paper, experiment 3", "results/bp-paper/exp3"),
-    ("multi-scan Fig. 3", "results/multiscan/fig3"), ("multi-scan Fig. 4", "results/multiscan/fig4"),
-    ("multi-scan Fig. 5", "results/multiscan/fig5"), ("JDT-VB Table IV", "results/jdtvb/table4"),
-    ("TBD-BP GOSPA (Fig. 2)", "results/tbd/gospa"),
-]
-SCHEDULE_WORKERS = (16, 64, 256)
-STEPS = [Step("/usr/bin/python3 -m plots.fig6 results/quickstart/summary.csv --out results/quickstart/fig6.png "
-              "--title \"2x3 grid, Pd = 0.6, lambda_fa = 0.01, r = 1\"", "the README's figure"),
-         Step("/usr/bin/python3 -m reports.quickstart_check --digests results/quickstart",
-              "digests of the first 100, 200 and 1000 trials per spacing, which a shorter quick start is compared with")]
 TIMING_COLUMNS = ("time_us",)
 
 
@@ -140,11 +90,6 @@ def summaries_equal_but_timing(root, a, b):
     return True
 
 
-def thousands(value, digits=3):
-    """value to `digits` significant digits with thin groups: 185626 -> "186 000"."""
-    return f"{float(f'{value:.{digits}g}'):,.0f}".replace(",", " ")
-
-
 def rows_per_second(meta):
     """trials.csv rows written per second of the run's wall time."""
     return meta["items_total"] * len(meta["algorithms"]) / meta["wall_seconds"]
@@ -169,9 +114,9 @@ def cluster(report):
     for name in ("threads2", "np2", "np3"):
         meta = data.read_meta(root, f"{CLUSTER}/throughput-{name}")
         rates[name] = rows_per_second(meta)
-        report.value(f"cluster.rate.{name}", thousands(rates[name]))
+        report.value(f"cluster.rate.{name}", markdown.thousands(rates[name]))
     capacity = min(rates["np2"], rates["np3"])  # what rank 0 sustains while it also computes
-    report.value("cluster.capacity", thousands(capacity))
+    report.value("cluster.capacity", markdown.thousands(capacity))
     meta = data.read_meta(root, "results/cluster/throughput-threads2")
     report.value("cluster.items", f"{meta['items_total']:,}".replace(",", " "))
     # Derived: a multi-scan item (one trial, every algorithm) costs its algorithms' summed time
@@ -185,7 +130,7 @@ def cluster(report):
     cores = capacity / rows_per_item * seconds_per_item
     report.value("cluster.derived.seconds", markdown.sig(seconds_per_item, 2))
     report.value("cluster.derived.rows", markdown.sig(rows_per_item, 2))
-    report.value("cluster.derived.cores", thousands(cores, 1))
+    report.value("cluster.derived.cores", markdown.thousands(cores, 1))
 
 
 def study_wall_times(report):
@@ -211,8 +156,8 @@ def fuzz_long_runs(report):
     if not rows:
         report.value("fuzz.long_runs", "No long run is recorded yet (`tests/fuzz/long-runs.csv` is empty).")
         return
-    table = [[f"`fuzz_{r['target']}`", markdown.duration(data.num(r, "seconds")), thousands(data.num(r, "inputs")),
-              thousands(data.num(r, "inputs_per_second")), r["seed_inputs"], r["new_inputs"], r["edges"], r["features"],
+    table = [[f"`fuzz_{r['target']}`", markdown.duration(data.num(r, "seconds")), markdown.thousands(data.num(r, "inputs")),
+              markdown.thousands(data.num(r, "inputs_per_second")), r["seed_inputs"], r["new_inputs"], r["edges"], r["features"],
               f"{r['peak_rss_mb']} MB", f"{r['date']}, `{r['commit']}`, {r['compiler']}"] for r in rows]
     missing = [f"`fuzz_{t}`" for t in FUZZ_TARGETS if t not in {r["target"] for r in rows}]
     report.value("fuzz.long_runs", markdown.table(
@@ -287,71 +232,6 @@ def test_timings(report):
                  f"{minutes(data.num(by[(cold, 'all', 'total')], 'wall_s'))} for the whole run")
 
 
-def span(seconds):
-    """A duration from microseconds to hours: "85 µs", "3.1 ms", "42 s", "12.7 min", "1.6 h"."""
-    if seconds < 1e-3:
-        return f"{markdown.sig(seconds * 1e6, 2)} µs"
-    if seconds < 1:
-        return f"{markdown.sig(seconds * 1e3, 2)} ms"
-    return markdown.duration(seconds)
-
-
-def schedule_csv(report, folder, workers, trials=None):
-    """`dabench schedule FOLDER --format csv` (the build's program) as rows of numbers by worker count."""
-    # The program of the data's tree, else of this checkout (a copy of the data has no build).
-    candidates = [Path(report.root) / "build" / "dabench", Path(__file__).resolve().parents[2] / "build" / "dabench"]
-    program = next((c for c in candidates if c.is_file()), None)
-    if program is None:
-        raise data.DataError(f"{candidates[-1]}: not built (bash scripts/build.sh): the schedule table of docs/clusters.md runs it")
-    command = [str(program), "schedule", folder, "--format", "csv", "--workers", ",".join(map(str, workers))]
-    if trials:
-        command += ["--trials", str(trials)]
-    done = subprocess.run(command, cwd=report.root, capture_output=True, text=True, check=False)
-    if done.returncode != 0:
-        raise data.DataError(f"{' '.join(command[1:])}: {done.stderr.strip()}")
-    return {int(r["workers"]): {k: float(v) for k, v in r.items()} for r in csv.DictReader(io.StringIO(done.stdout))}
-
-
-def scheduling(report):
-    """The work queue (issue 31): fig3 at 8 trials measured on 1 and 2 threads against the
-    simulator's predictions from the 1-thread run's unit times; the predictions for 16 workers
-    of fig3 and tbd-gospa at 32 trials; and a table of every committed study at 16, 64 and 256."""
-    root = Path(report.root)
-    metas = {name: data.read_meta(report.root, f"{CLUSTER}/schedule-fig3-8-{name}") for name in SCHEDULE_RUNS}
-    predicted = schedule_csv(report, f"{CLUSTER}/schedule-fig3-8-threads1", (1, 2))
-    for name, meta in metas.items():
-        report.value(f"schedule.fig3.{name}.wall", f"{markdown.fixed(meta['wall_seconds'], 1)} s")
-        report.value(f"schedule.fig3.{name}.fraction", markdown.fixed(meta["work_fraction"], 2))
-    two = predicted[2]
-    report.value("schedule.fig3.total", f"{markdown.fixed(two['total_s'], 1)} s")
-    report.value("schedule.fig3.longest", f"{markdown.fixed(two['longest_unit_s'], 1)} s")
-    report.value("schedule.fig3.best_fraction", markdown.fixed(two["total_s"] / (2 * two["bound_s"]), 2))
-    report.value("schedule.fig3.predicted.threads1", f"{markdown.fixed(predicted[1]['wall_s'], 1)} s")
-    report.value("schedule.fig3.predicted.threads2", f"{markdown.fixed(two['wall_s'], 1)} s")
-    report.value("schedule.fig3.predicted.fraction2", markdown.fixed(two["work_fraction"], 2))
-    report.value("schedule.fig3.predicted.known2", f"{markdown.fixed(two['known_wall_s'], 1)} s")
-    report.value("schedule.fig3.predicted.blocks2", f"{markdown.fixed(two['blocks_wall_s'], 1)} s")
-    report.value("schedule.fig3.predicted.blocks_fraction2", markdown.fixed(two["blocks_work_fraction"], 2))
-    for name, folder in (("fig3_32", "results/multiscan/fig3"), ("tbd_32", "results/tbd/gospa")):
-        at16 = schedule_csv(report, folder, (16,), trials=32)[16]
-        report.value(f"schedule.{name}", f"{markdown.sig(at16['wall_s'], 3)} s, {markdown.fixed(at16['wall_s'] / at16['bound_s'], 2)} × "
-                                         f"the bound of {markdown.sig(at16['bound_s'], 3)} s (8-item blocks: "
-                                         f"{markdown.sig(at16['blocks_wall_s'], 3)} s)")
-    rows = []
-    for label, folder in SCHEDULE_STUDIES:
-        by_workers = schedule_csv(report, folder, SCHEDULE_WORKERS)
-        first = by_workers[SCHEDULE_WORKERS[0]]
-        means = not any((root / folder / name).is_file() for name in ("trials.csv", "runs.csv"))
-        row = [f"{label} (`{folder}`)" + (" †" if means else ""), thousands(first["units"], 6),
-               span(first["total_s"]), span(first["longest_unit_s"])]
-        for w in SCHEDULE_WORKERS:
-            p = by_workers[w]
-            row.append(f"{span(p['wall_s'])} ({span(p['blocks_wall_s'])})")
-        rows.append(row)
-    report.value("schedule.table", markdown.table(
-        ["study", "units", "algorithm time", "longest unit"] + [f"{w} workers" for w in SCHEDULE_WORKERS], rows, "lrrrrrr"))
-
-
 # The studies the README lists, each with its headline verdict counts (the value "headline" of
 # its checks: Report.headline).
 HEADLINED = ("bp-paper", "multiscan", "jdtvb", "tbd", "leaderboard")
@@ -365,7 +245,7 @@ def headlines(report):
 def checks(report):
     headlines(report)
     quickstart(report)
-    scheduling(report)
+    scheduling.check(report)
     algorithm2(report)
     cluster(report)
     study_wall_times(report)
@@ -378,5 +258,5 @@ DOCS_PAGES = ("layout", "command-line", "clusters", "experiment-files", "result-
               "python", "tests", "benchmarks", "algorithms")
 
 STUDY = Study(name="readme", report="README.md", template="experiments/readme/template.md", runs=RUNS, steps=STEPS,
-              checks=checks, lint=False, needs=HEADLINED,
+              checks=checks, digest=scheduling.digest, lint=False, needs=HEADLINED,
               pages=tuple((f"experiments/readme/docs/{page}.md", f"docs/{page}.md") for page in DOCS_PAGES))

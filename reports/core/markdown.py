@@ -93,3 +93,8 @@ def interval(lo, hi, se):
     if d is None:
         return f"[{sig(lo)}, {sig(hi)}]"
     return f"[{lo:.{d}f}, {hi:.{d}f}]"
+
+
+def thousands(value, digits=3):
+    """value to `digits` significant digits with thin groups: 185626 -> "186 000"."""
+    return f"{float(f'{value:.{digits}g}'):,.0f}".replace(",", " ")

@@ -9,6 +9,7 @@ import json
 import os
 import re
 import shlex
+import subprocess
 from collections import Counter
 
 from . import data, markdown, verdicts
@@ -190,6 +191,7 @@ def bench_provenance(root, run):
                         "rerun it from a clean commit")
     if command_words(context.get("command_line", "")) != command_words(run.command):
         problems.append(f"{run.folder}: made by `{context.get('command_line')}`, the study lists `{run.command}`")
+    problems += commit_problems(root, run.folder, context.get("git_commit", ""))
     return context, problems
 
 
@@ -212,6 +214,7 @@ def provenance(root, run):
                         f"source_modified {modified}); rerun it from a clean commit")
     if meta.get("status") != "complete":
         problems.append(f"{run.folder}: run not complete ({meta.get('status')})")
+    problems += commit_problems(root, run.folder, commit)
     moves = moved_paths(root)
     if command_words(with_moves(meta.get("command_line", ""), moves)) != command_words(run.command):
         problems.append(f"{run.folder}: made by `{meta.get('command_line')}`, the study lists `{run.command}`")
@@ -219,11 +222,83 @@ def provenance(root, run):
     ini = os.path.join(root, experiment)
     if os.path.exists(ini):
         with open(ini, encoding="utf-8") as f:
-            if experiment_body(f.read()) != experiment_body(with_moves(meta.get("experiment", ""), moves)):
-                problems.append(f"{run.folder}: {experiment} has changed since the run; rerun it")
+            text = f.read()
+        if experiment_body(text) != experiment_body(with_moves(meta.get("experiment", ""), moves)):
+            problems.append(f"{run.folder}: {experiment} has changed since the run; rerun it")
+        problems += settings_problems(run.folder, meta, run.command, text)
     else:
         problems.append(f"{run.folder}: its experiment {experiment} is not in the tree")
     return meta, problems
+
+
+_SHALLOW = {}
+
+
+def git(root, *args):
+    """The completed `git -C root ARGS`, or None where git cannot run there."""
+    try:
+        return subprocess.run(["git", "-C", root, *args], capture_output=True, text=True, check=False)
+    except OSError:
+        return None
+
+
+def commit_problems(root, folder, commit):
+    """Why a run's recorded commit cannot be traced in the repository under root: it is not there,
+    or HEAD does not descend from it. Nothing where root is not a git work tree (a copy of the
+    data) or is a shallow clone (its history is cut: a missing commit proves nothing)."""
+    commit = commit.removesuffix("-dirty")
+    if root not in _SHALLOW:
+        done = git(root, "rev-parse", "--is-shallow-repository")
+        _SHALLOW[root] = None if done is None or done.returncode != 0 else done.stdout.strip() == "true"
+    if _SHALLOW[root] is not False:
+        return []
+    exists = git(root, "cat-file", "-e", f"{commit}^{{commit}}")
+    if not re.fullmatch(r"[0-9a-f]{40}", commit) or exists.returncode != 0:
+        return [f"{folder}: its git_commit {commit or '(none)'} is not a commit of this repository"]
+    if git(root, "merge-base", "--is-ancestor", commit, "HEAD").returncode != 0:
+        return [f"{folder}: its git_commit {commit} is not an ancestor of HEAD (made on another branch?)"]
+    return []
+
+
+def option(words, name):
+    """The value of `--name VALUE` or `--name=VALUE` among a command's words, else None."""
+    for i, w in enumerate(words):
+        if w == name and i + 1 < len(words):
+            return words[i + 1]
+        if w.startswith(name + "="):
+            return w.split("=", 1)[1]
+    return None
+
+
+def ini_value(text, key):
+    """The value of a top-level `key = value` of an experiment file (before its first section;
+    a trailing comment dropped), else None."""
+    for line in text.splitlines():
+        if line.lstrip().startswith("["):
+            break
+        name, sep, value = line.partition("=")
+        if sep and name.strip() == key and not COMMENT_LINE.match(line):
+            return re.split(r"\s[#;]", value, maxsplit=1)[0].strip()
+    return None
+
+
+def settings_problems(folder, meta, command, experiment_text):
+    """Why a run's recorded seed and trial count are not what its command and experiment file
+    ask for (a `--seed`/`--trials` of the command wins over the file's)."""
+    words = command_words(command)
+    out = []
+    for recorded, flag, key in (("seed", "--seed", "seed"), ("trials_per_point", "--trials", "trials")):
+        wanted = option(words, flag) or ini_value(experiment_text, key)
+        if wanted is None:
+            continue
+        try:
+            same = float(wanted) == float(meta.get(recorded))
+        except (TypeError, ValueError):
+            same = False
+        if not same:
+            out.append(f"{folder}: meta.json's {recorded} is {meta.get(recorded)}, its command and experiment ask "
+                       f"for {wanted}")
+    return out
 
 
 def short_command(command):

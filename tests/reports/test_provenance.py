@@ -3,6 +3,7 @@
 import json
 import os
 import shutil
+import subprocess
 import tempfile
 import unittest
 
@@ -26,6 +27,7 @@ class Provenance(unittest.TestCase):
     def problems(self, **meta):
         record = {"git_commit": "9dfb3047fb2a3fe617bbe39ae06a2699ccb61608", "source_modified": False,
                   "status": "complete", "experiment_path": "experiments/toy.ini", "experiment": EXPERIMENT,
+                  "trials_per_point": "4", "seed": "1",
                   "command_line": "./build/dabench run experiments/toy.ini --force"}
         record.update(meta)
         with open(os.path.join(self.root, "results", "toy", "meta.json"), "w", encoding="utf-8") as f:
@@ -67,6 +69,34 @@ class Provenance(unittest.TestCase):
         # A path that only begins like a moved one is not moved.
         self.assertEqual(study.with_moves("experiments/toy.ini2 experiments/toy.ini", study.moved_paths(self.root)),
                          "experiments/toy.ini2 experiments/study/toy.ini")
+
+    def test_seed_and_trials_must_be_what_the_command_and_experiment_ask_for(self):
+        self.assertEqual(self.problems(seed="2014"), [])  # the experiment names no seed: not checked
+        self.assertEqual(self.problems(trials_per_point="4"), [])
+        self.assertIn("trials_per_point is 5, its command and experiment ask for 4", self.problems(trials_per_point="5")[0])
+        self.run = study.Run("results/toy", "./build/dabench run experiments/toy.ini --trials 7 --force")
+        self.assertEqual(self.problems(trials_per_point="7", command_line=self.run.command), [])
+        self.assertEqual(len(self.problems(trials_per_point="4", command_line=self.run.command)), 1)
+        self.run = study.Run("results/toy", "./build/dabench run experiments/toy.ini --seed=9 --force")
+        self.assertIn("seed is 1, its command and experiment ask for 9",
+                      self.problems(seed="1", command_line=self.run.command)[0])
+
+    def test_the_commit_must_be_in_the_repository_and_an_ancestor_of_head(self):
+        def git(*args):
+            return subprocess.run(["git", "-C", self.root, "-c", "user.email=t@t", "-c", "user.name=t", *args],
+                                  capture_output=True, text=True, check=True).stdout.strip()
+        git("init", "-q", "-b", "main")
+        git("add", "-A")
+        git("commit", "-q", "-m", "one")
+        first = git("rev-parse", "HEAD")
+        git("checkout", "-q", "-b", "side")
+        git("commit", "-q", "--allow-empty", "-m", "side")
+        side = git("rev-parse", "HEAD")
+        git("checkout", "-q", "main")
+        git("commit", "-q", "--allow-empty", "-m", "two")
+        self.assertEqual(self.problems(git_commit=first), [])
+        self.assertIn("is not a commit of this repository", self.problems(git_commit="0" * 40)[0])
+        self.assertIn("is not an ancestor of HEAD", self.problems(git_commit=side)[0])
 
     def test_a_launcher_before_the_program_does_not_count(self):
         self.assertEqual(study.command_words("taskset -c 0 ./build/dabench run x.ini --force"),

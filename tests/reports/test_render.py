@@ -1,6 +1,7 @@
 """render.py on a copy of the committed data: one tampered number changes the verdict it feeds,
-and a hand-edited REPORT fails --check."""
+a hand-edited REPORT fails --check, and so does a data edit no REPORT shows (the manifest)."""
 
+import csv
 import os
 import re
 import shutil
@@ -8,6 +9,8 @@ import subprocess
 import sys
 import tempfile
 import unittest
+
+from reports import manifest
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -90,6 +93,56 @@ class CopyOfTheData(unittest.TestCase):
         self.assertIn(stale, result.stderr)
 
 
+    def test_data_edits_that_move_no_printed_digit_fail_the_check(self):
+        """The tampers of issue 50 that no REPORT shows: an MSBP HPD value of Fig. 4 × 0.9 and a
+        Table IV summary mean in its last digits. The manifest (results/SHA256SUMS) names the file;
+        the REPORTs themselves stay as they were."""
+        manifest = "not the file results/SHA256SUMS lists"
+        self.assertNotIn(manifest, render(self.root, "--check", "jdtvb").stderr)
+        targets = os.path.join(self.root, "results/multiscan/fig4/targets.csv")
+        with open(targets, encoding="utf-8") as f:
+            hpd = next(r["hpd"] for r in csv.DictReader(f) if r["algorithm"] == "msbp")
+        replace_field(targets, lambda r: r["algorithm"] == "msbp" and r["hpd"] == hpd, "hpd", repr(float(hpd) * 0.9))
+        summary = os.path.join(self.root, "results/jdtvb/table4/summary.csv")
+        with open(summary, encoding="utf-8") as f:
+            tet = next(csv.DictReader(f))["tet_s_mean"]
+        replace_field(summary, lambda r: r["tet_s_mean"] == tet, "tet_s_mean", repr(float(tet) * (1 + 1e-12)))
+        result = render(self.root, "--check", "jdtvb")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(f"results/multiscan/fig4/targets.csv: {manifest}", result.stderr)
+        self.assertIn(f"results/jdtvb/table4/summary.csv: {manifest}", result.stderr)
+        self.assertNotIn("is not what the committed data give", result.stderr)
+
+    def test_a_deleted_data_file_fails_the_check(self):
+        os.remove(os.path.join(self.root, "results/jdtvb/fig7/meta.json"))
+        result = render(self.root, "--check", "leaderboard")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("results/jdtvb/fig7/meta.json: listed in results/SHA256SUMS but missing", result.stderr)
+
+
+class Manifest(unittest.TestCase):
+    def test_the_committed_manifest_lists_every_committed_data_file(self):
+        """results/SHA256SUMS lists exactly what git tracks under results/ but the REPORTs and
+        READMEs, each with its sha256 (what sha256sum -c checks)."""
+        listed = manifest.read(REPO)
+        committed = manifest.committed_files(REPO)
+        if committed is None:
+            self.skipTest("not a git work tree")
+        self.assertEqual(sorted(listed), committed)
+        self.assertTrue(all(not p.endswith(("REPORT.md", "README.md")) for p in listed))
+        self.assertEqual(manifest.problems(REPO), [])
+
+    def test_a_malformed_line_is_one_problem(self):
+        root = tempfile.mkdtemp(prefix="manifest-test-")
+        try:
+            os.makedirs(os.path.join(root, "results"))
+            with open(os.path.join(root, manifest.MANIFEST), "w", encoding="utf-8") as f:
+                f.write("abc results/x.csv\n")
+            self.assertEqual(manifest.problems(root), ["results/SHA256SUMS:1: not `<sha256>  <path>`"])
+        finally:
+            shutil.rmtree(root)
+
+
 class UnknownStudy(unittest.TestCase):
     """rerun.py and digest.py name the studies they know when given one they do not."""
 
@@ -102,9 +155,9 @@ class UnknownStudy(unittest.TestCase):
         self.assertIn("unknown study 'nosuch' (known: bp-paper, multiscan, jdtvb, tbd, leaderboard, readme)", result.stderr)
 
     def test_digest_lists_the_studies_with_digests(self):
-        result = self.run_module("reports.digest", "readme")
+        result = self.run_module("reports.digest", "jdtvb")
         self.assertEqual(result.returncode, 2)
-        self.assertIn("(studies with digests: bp-paper, tbd, leaderboard)", result.stderr)
+        self.assertIn("(studies with digests: bp-paper, tbd, leaderboard, readme)", result.stderr)
 
 
 if __name__ == "__main__":
