@@ -91,11 +91,13 @@ VERDICT_RULES = (
 
 def commands_block(s):
     lines = ["```sh", "bash scripts/setup.sh && bash scripts/build.sh",
-             f"# all of the below, in order: /usr/bin/python3 -m reports.rerun {s.name}"]
+             f"# reproduce: /usr/bin/python3 -m reports.rerun {s.name} (the runs into a scratch folder, compared with "
+             "the committed ones); with --in-place, all of the below, in order"]
     for run in s.runs:
         lines.append(run.command + (f"   # {run.note}" if run.note else ""))
     for step in s.steps:
         lines.append(step.command + (f"   # {step.note}" if step.note else ""))
+    lines.append("/usr/bin/python3 -m reports.manifest   # results/SHA256SUMS: the data's new hashes")
     lines.append("/usr/bin/python3 -m reports.render " + s.name + "   # this file, from the data")
     lines.append("```")
     return "\n".join(lines)

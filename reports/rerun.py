@@ -1,39 +1,172 @@
-#!/usr/bin/python3
-"""Rerun a study: each of its runs (the commands its render.REPORT lists, from the repository root),
-then its steps (digests, figures), then render its render.REPORT. Run it from a clean commit (the
-provenance check refuses runs made from a modified tree) with a built ./build/dabench.
+"""Reproduce a study: rerun its runs into a scratch folder and compare each with the committed
+run (scripts/same_results.py: every CSV both hold, identical but for timings), or, with
+--in-place, replace the committed data and then run the study's steps (digests, figures), the
+manifest and its REPORT.
 
-Usage: /usr/bin/python3 -m reports.rerun STUDY [--only FOLDER ...] [--steps-only] [--dry-run]"""
+Usage (from the repository root, with a built ./build/dabench):
+  /usr/bin/python3 -m reports.rerun STUDY [--only FOLDER ...] [--scratch DIR] [--dry-run]
+  /usr/bin/python3 -m reports.rerun --all [--scratch DIR] [--dry-run]
+  /usr/bin/python3 -m reports.rerun STUDY --in-place [--only FOLDER ...] [--steps] [--dry-run]
+
+STUDY is a study of `python3 -m reports.render --list`, or `quickstart` (the quick start's run,
+which the readme study holds). Before running, the predicted wall time of what is named is
+printed (`dabench schedule` on the committed runs' unit times, on this machine's cores: a lower
+estimate). --in-place with --only runs the study's steps only with --steps (a step may rewrite
+another run's figure or a benchmark). Exit status: 0 every rerun identical (or done, in place),
+1 a difference or a failed command, 2 bad arguments."""
 
 import argparse
+import csv
+import io
+import os
+import shlex
 import subprocess
 import sys
+import tempfile
 
 from reports import render
+from reports.core import markdown, study as study_core
+
+ALIASES = {"quickstart": ("readme", ["results/quickstart"])}  # a name that is one run of a study
+DABENCH = os.path.join(render.REPO, "build", "dabench")
+
+
+def selected(args):
+    """[(study, [runs])] that the arguments name, or an error message."""
+    names = render.STUDY_NAMES if args.all else [args.name]
+    out = []
+    for name in names:
+        only = args.only
+        if name in ALIASES:
+            name, only = ALIASES[name][0], (only or ALIASES[name][1])
+        if name not in render.STUDY_NAMES:
+            return None, (f"unknown study {name!r} (known: {', '.join(render.STUDY_NAMES)}, "
+                          f"and {', '.join(ALIASES)})")
+        s = render.load(name)
+        runs = [r for r in s.runs if not only or r.folder in only]
+        if only and not args.all:
+            unknown = sorted(set(only) - {r.folder for r in s.runs})
+            if unknown:
+                return None, f"{unknown[0]}: not a run of {name} (its runs: {', '.join(r.folder for r in s.runs)})"
+        out.append((s, runs))
+    return out, None
+
+
+def workers(command):
+    """The workers a run command uses: --threads (else this machine's cores) × mpirun's -np."""
+    words = shlex.split(command)
+    threads = study_core.option(words, "--threads")
+    ranks = study_core.option(words, "-np") if words and words[0] == "mpirun" else None
+    return int(threads or os.cpu_count() or 1) * int(ranks or 1)
+
+
+def predicted_seconds(run):
+    """`dabench schedule` of a committed run at the command's worker count, or None (a benchmark,
+    a run not committed, or no build)."""
+    if study_core.is_bench(run) or not os.path.exists(os.path.join(render.REPO, run.folder, "meta.json")):
+        return None
+    args = [DABENCH, "schedule", run.folder, "--format", "csv", "--workers", str(workers(run.command))]
+    trials = study_core.option(shlex.split(run.command), "--trials")
+    if trials:
+        args += ["--trials", trials]
+    try:
+        done = subprocess.run(args, cwd=render.REPO, capture_output=True, text=True, check=False)
+    except OSError:
+        return None
+    if done.returncode != 0:
+        return None
+    return float(next(csv.DictReader(io.StringIO(done.stdout)))["wall_s"])
+
+
+def print_prediction(chosen):
+    total, unknown = 0.0, []
+    for s, runs in chosen:
+        for r in runs:
+            seconds = predicted_seconds(r)
+            if seconds is None:
+                unknown.append(r.folder)
+                continue
+            total += seconds
+            print(f"rerun: {r.folder}: predicted {markdown.duration(seconds)} on {workers(r.command)} workers")
+    print(f"rerun: predicted in all {markdown.duration(total)} of wall time (algorithm time only: a lower estimate)"
+          + (f"; not predicted: {', '.join(unknown)}" if unknown else ""), flush=True)
+
+
+def scratch_command(run, scratch):
+    """The run's command with its output in the scratch folder (--out replaced or added)."""
+    words = shlex.split(run.command)
+    out = os.path.join(scratch, run.folder)
+    if "--out" in words:
+        words[words.index("--out") + 1] = out
+    else:
+        words += ["--out", out]
+    return shlex.join(words)
+
+
+def shell(command, dry_run):
+    print(f"rerun: {command}", flush=True)
+    return dry_run or subprocess.run(command, shell=True, cwd=render.REPO).returncode == 0
+
+
+def reproduce(chosen, scratch, dry_run):
+    """Each run into scratch, then compared with the committed folder; True if all identical."""
+    same = True
+    for s, runs in chosen:
+        for r in runs:
+            if study_core.is_bench(r):
+                print(f"rerun: {r.folder}: a benchmark (timings only): not compared")
+                continue
+            if not shell(scratch_command(r, scratch), dry_run):
+                print(f"rerun: failed: {r.folder}", file=sys.stderr)
+                return False
+            if dry_run:
+                continue
+            done = subprocess.run([sys.executable, os.path.join(render.REPO, "scripts", "same_results.py"), "--shared",
+                                   r.folder, os.path.join(scratch, r.folder)],
+                                  cwd=render.REPO, capture_output=True, text=True, check=False)
+            verdict = done.stdout.strip().splitlines()[-1] if done.stdout.strip() else done.stderr.strip()
+            print(f"rerun: {r.folder}: {verdict}")
+            if done.returncode != 0:
+                print(done.stdout, end="")
+                same = False
+    return same
+
+
+def in_place(chosen, args):
+    for s, runs in chosen:
+        steps = s.steps if (args.steps or not args.only) else []
+        commands = [r.command for r in runs] + [step.command for step in steps]
+        commands += ["/usr/bin/python3 -m reports.manifest", f"/usr/bin/python3 -m reports.render {s.name}"]
+        for command in commands:
+            if not shell(command, args.dry_run):
+                print(f"rerun: failed: {command}", file=sys.stderr)
+                return False
+    return True
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("name", metavar="STUDY")
-    ap.add_argument("--only", nargs="+", metavar="FOLDER", help="rerun only these run folders")
-    ap.add_argument("--steps-only", action="store_true", help="no runs: digests, figures and the render.REPORT")
+    ap.add_argument("name", metavar="STUDY", nargs="?")
+    ap.add_argument("--all", action="store_true", help="every study")
+    ap.add_argument("--only", nargs="+", metavar="FOLDER", help="only these run folders")
+    ap.add_argument("--scratch", metavar="DIR", help="where the reruns go (default: a new temporary folder)")
+    ap.add_argument("--in-place", action="store_true", help="replace the committed data, then steps, manifest, REPORT")
+    ap.add_argument("--steps", action="store_true", help="with --in-place --only: run the study's steps too")
     ap.add_argument("--dry-run", action="store_true", help="print the commands only")
     args = ap.parse_args(argv)
-    known = {n: render.load(n) for n in render.STUDY_NAMES if n == args.name}
-    if args.name not in known:
-        print(f"rerun.py: unknown study {args.name!r} (known: {', '.join(render.STUDY_NAMES)})", file=sys.stderr)
+    if bool(args.name) == args.all:
+        print("rerun: name one STUDY, or --all", file=sys.stderr)
         return 2
-    s = known[args.name]
-    runs = [] if args.steps_only else [r for r in s.runs if not args.only or r.folder in args.only]
-    commands = [r.command for r in runs] + [step.command for step in s.steps]
-    commands.append("/usr/bin/python3 -m reports.manifest")  # the rerun's files, listed for --check
-    commands.append(f"/usr/bin/python3 -m reports.render {s.name}")
-    for command in commands:
-        print(f"rerun.py: {command}", flush=True)
-        if not args.dry_run and subprocess.run(command, shell=True, cwd=render.REPO).returncode != 0:
-            print(f"rerun.py: failed: {command}", file=sys.stderr)
-            return 1
-    return 0
+    chosen, error = selected(args)
+    if error:
+        print(f"rerun: {error}", file=sys.stderr)
+        return 2
+    print_prediction(chosen)
+    if args.in_place:
+        return 0 if in_place(chosen, args) else 1
+    scratch = args.scratch or ("SCRATCH" if args.dry_run else tempfile.mkdtemp(prefix="dabench-rerun-"))
+    print(f"rerun: reruns go to {scratch}; the committed data stay as they are", flush=True)
+    return 0 if reproduce(chosen, scratch, args.dry_run) else 1
 
 
 if __name__ == "__main__":

@@ -4,7 +4,7 @@
 # (BP vs exact on the 2×3 grid baseline of Fig. 6) into out/quickstart/ (ignored by git), render
 # its figure, and compare its numbers with the committed reference run in results/quickstart/
 # (reports/quickstart_check.py). It writes no tracked file: the committed run changes only
-# through `python3 -m reports.rerun readme`.
+# through `python3 -m reports.rerun quickstart --in-place`.
 # Environment: DABENCH_QUICKSTART_TRIALS=N runs the first N of the 10 000 trials per spacing
 # (for N = 100, 200, 1000 compared bit for bit with the digest the committed run recorded of its
 # own first N trials; other N are not compared);

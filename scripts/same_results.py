@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Checks that two run folders hold the same results, timings aside.
 
-    same_results.py BEFORE AFTER
+    same_results.py [--shared] BEFORE AFTER
 
-Compares every CSV file the two folders share (trials.csv, targets.csv, tracks.csv,
+Compares every CSV file of BEFORE with AFTER's (--shared: only the files both hold, e.g. a
+committed run folder, which keeps digests of files it does not commit, against a fresh rerun) (trials.csv, targets.csv, tracks.csv,
 iterations.csv, summary.csv, ...) row by row and field by field as text, so numbers must be
 bit-identical in their written (shortest round-trip) form. Columns that hold timings are left
 out: their name is `time_us`, `step_time_us`, `tet_s`, ends in `_seconds`, or is a summary statistic of one of
@@ -46,9 +47,12 @@ def compare(before, after, name):
 
 
 def main():
-    if len(sys.argv) != 3:
-        sys.exit("usage: same_results.py BEFORE AFTER")
-    before, after = sys.argv[1], sys.argv[2]
+    args = sys.argv[1:]
+    shared = "--shared" in args
+    args = [a for a in args if a != "--shared"]
+    if len(args) != 2:
+        sys.exit("usage: same_results.py [--shared] BEFORE AFTER")
+    before, after = args
     files = []
     for root, _, names in os.walk(before):
         for n in names:
@@ -57,6 +61,10 @@ def main():
     if not files:
         sys.exit(f"same_results.py: no CSV files under {before}")
     failed = False
+    if shared:
+        files = [rel for rel in files if os.path.exists(os.path.join(after, rel))]
+        if not files:
+            sys.exit(f"same_results.py: {before} and {after} share no CSV file")
     for rel in sorted(files):
         other = os.path.join(after, rel)
         if not os.path.exists(other):
@@ -68,7 +76,8 @@ def main():
             print(d)
         if differences:
             failed = True
-    print(f"{len(files)} files compared: {'DIFFERENT' if failed else 'identical (timings aside)'}")
+    print(f"{len(files)} files compared ({', '.join(sorted(files))}): "
+          f"{'DIFFERENT' if failed else 'identical (timings aside)'}")
     sys.exit(1 if failed else 0)
 
 

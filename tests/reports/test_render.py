@@ -152,7 +152,27 @@ class UnknownStudy(unittest.TestCase):
     def test_rerun_lists_every_study(self):
         result = self.run_module("reports.rerun", "nosuch", "--dry-run")
         self.assertEqual(result.returncode, 2)
-        self.assertIn("unknown study 'nosuch' (known: bp-paper, multiscan, jdtvb, tbd, leaderboard, readme)", result.stderr)
+        self.assertIn("unknown study 'nosuch' (known: bp-paper, multiscan, jdtvb, tbd, leaderboard, readme, and quickstart)", result.stderr)
+
+    def test_rerun_names_what_it_reproduces_and_compares_it(self):
+        """A cheap committed run rerun into a scratch folder: identical to the committed one,
+        timings aside; the committed data untouched."""
+        if not os.path.exists(os.path.join(REPO, "build", "dabench")):
+            self.skipTest("dabench is not built")
+        scratch = tempfile.mkdtemp(prefix="rerun-test-")
+        try:
+            folder = "results/cluster/throughput-threads2"
+            result = self.run_module("reports.rerun", "readme", "--only", folder, "--scratch", scratch)
+            self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+            self.assertIn(f"rerun: {folder}: predicted", result.stdout)
+            self.assertIn(f"rerun: {folder}: 1 files compared (summary.csv): identical (timings aside)", result.stdout)
+            self.assertTrue(os.path.exists(os.path.join(scratch, folder, "trials.csv")))
+            self.assertEqual(manifest.problems(REPO), [])
+        finally:
+            shutil.rmtree(scratch)
+        result = self.run_module("reports.rerun", "readme", "--only", "results/nosuch", "--dry-run")
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("results/nosuch: not a run of readme", result.stderr)
 
     def test_digest_lists_the_studies_with_digests(self):
         result = self.run_module("reports.digest", "jdtvb")
