@@ -258,5 +258,5 @@ DOCS_PAGES = ("layout", "command-line", "clusters", "experiment-files", "result-
               "python", "tests", "benchmarks", "algorithms")
 
 STUDY = Study(name="readme", report="README.md", template="experiments/readme/template.md", runs=RUNS, steps=STEPS,
-              checks=checks, digest=scheduling.digest, lint=False, needs=HEADLINED,
+              checks=checks, digest=scheduling.digest, needs=HEADLINED,
               pages=tuple((f"experiments/readme/docs/{page}.md", f"docs/{page}.md") for page in DOCS_PAGES))

@@ -65,7 +65,7 @@ class Study:
     steps: list
     checks: object  # function(Report) -> None
     digest: object = None  # function(root) -> [files written]: digests of large per-trial files
-    lint: bool = True  # lint the template's prose for numbers (not for the README)
+    lint: bool = True  # lint the template's prose for numbers (every study's, the README's and its pages')
     pages: tuple = ()  # more (template, file) pairs rendered from the same checks (the README's docs pages)
     needs: tuple = ()  # studies whose values the checks read (report.studies[name]): the README's headlines
 
