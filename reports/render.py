@@ -12,6 +12,8 @@ Usage (from the repository root; paths are relative to it):
   --root DIR   render the tree under DIR instead of the repository: its data (results/,
                experiments/) and its REPORTs (templates and checks stay the repository's)
   --list       the studies, their templates and runs
+  --strict     with --check, fail on a stale run too: one whose source files changed since it was
+               made or last reproduced (reports/staleness.py, results/staleness.csv)
 
 STUDY is a name from --list (default: all). Exit status: 0 current, 1 stale or failing checks,
 2 bad input (unknown study, unreadable data)."""
@@ -22,7 +24,7 @@ import os
 import sys
 
 from experiments import bp_paper, jdtvb, leaderboard, multiscan, readme, tbd
-from reports import manifest
+from reports import manifest, staleness
 from reports.core import data, study as study_core, template
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -109,6 +111,7 @@ def main(argv=None):
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--root", default=REPO)
     ap.add_argument("--list", action="store_true")
+    ap.add_argument("--strict", action="store_true", help="with --check: a stale run (reports/staleness.py) fails too")
     args = ap.parse_args(argv)
     unknown = [n for n in args.names if n not in STUDY_NAMES]
     if unknown:
@@ -155,6 +158,8 @@ def main(argv=None):
         if args.check and problems:
             status = 1
     data_problems = manifest.problems(args.root)
+    if args.check:
+        data_problems += staleness.problems(args.root, strict=args.strict)
     for p in data_problems:
         print(f"render.py: {p}", file=sys.stderr)
     if args.check and data_problems:

@@ -4,14 +4,16 @@ run (scripts/same_results.py: every CSV both hold, identical but for timings), o
 manifest and its REPORT.
 
 Usage (from the repository root, with a built ./build/dabench):
-  /usr/bin/python3 -m reports.rerun STUDY [--only FOLDER ...] [--scratch DIR] [--dry-run]
+  /usr/bin/python3 -m reports.rerun STUDY [--only FOLDER ...] [--scratch DIR] [--record] [--dry-run]
   /usr/bin/python3 -m reports.rerun --all [--scratch DIR] [--dry-run]
   /usr/bin/python3 -m reports.rerun STUDY --in-place [--only FOLDER ...] [--steps] [--dry-run]
 
 STUDY is a study of `python3 -m reports.render --list`, or `quickstart` (the quick start's run,
 which the readme study holds). Before running, the predicted wall time of what is named is
 printed (`dabench schedule` on the committed runs' unit times, on this machine's cores: a lower
-estimate). --in-place with --only runs the study's steps only with --steps (a step may rewrite
+estimate). --record: an identical rerun made from a clean commit is recorded in
+results/verified.csv, so that the run's sources count as current again (reports/staleness.py).
+--in-place with --only runs the study's steps only with --steps (a step may rewrite
 another run's figure or a benchmark). Exit status: 0 every rerun identical (or done, in place),
 1 a difference or a failed command, 2 bad arguments."""
 
@@ -24,8 +26,8 @@ import subprocess
 import sys
 import tempfile
 
-from reports import render
-from reports.core import markdown, study as study_core
+from reports import render, staleness
+from reports.core import data, markdown, study as study_core
 
 ALIASES = {"quickstart": ("readme", ["results/quickstart"])}  # a name that is one run of a study
 DABENCH = os.path.join(render.REPO, "build", "dabench")
@@ -108,7 +110,10 @@ def shell(command, dry_run):
     return dry_run or subprocess.run(command, shell=True, cwd=render.REPO).returncode == 0
 
 
-def reproduce(chosen, scratch, dry_run):
+verified = []  # the folders reproduce() found identical, from a clean commit
+
+
+def reproduce(chosen, scratch, dry_run, record):
     """Each run into scratch, then compared with the committed folder; True if all identical."""
     same = True
     for s, runs in chosen:
@@ -129,7 +134,20 @@ def reproduce(chosen, scratch, dry_run):
             if done.returncode != 0:
                 print(done.stdout, end="")
                 same = False
+            elif record and record_verified(r.folder, os.path.join(scratch, r.folder)):
+                verified.append(r.folder)
     return same
+
+
+def record_verified(folder, rerun_folder):
+    """Record in results/verified.csv that folder was reproduced, if the rerun was made from a
+    clean commit (its meta.json says so): its sources then count as current (reports/staleness.py)."""
+    meta = data.read_meta(rerun_folder, "")
+    if meta.get("source_modified") is not False or meta.get("git_commit", "").endswith("-dirty"):
+        print(f"rerun: {folder}: not recorded as reproduced (the rerun was made from a modified tree)")
+        return False
+    staleness.record_verified(render.REPO, folder, meta.get("end_time", ""))
+    return True
 
 
 def in_place(chosen, args):
@@ -152,6 +170,9 @@ def main(argv=None):
     ap.add_argument("--scratch", metavar="DIR", help="where the reruns go (default: a new temporary folder)")
     ap.add_argument("--in-place", action="store_true", help="replace the committed data, then steps, manifest, REPORT")
     ap.add_argument("--steps", action="store_true", help="with --in-place --only: run the study's steps too")
+    ap.add_argument("--record", action="store_true",
+                    help="record each identical rerun made from a clean commit in results/verified.csv, and rewrite "
+                         "results/staleness.csv (its sources count as current again)")
     ap.add_argument("--dry-run", action="store_true", help="print the commands only")
     args = ap.parse_args(argv)
     if bool(args.name) == args.all:
@@ -166,7 +187,12 @@ def main(argv=None):
         return 0 if in_place(chosen, args) else 1
     scratch = args.scratch or ("SCRATCH" if args.dry_run else tempfile.mkdtemp(prefix="dabench-rerun-"))
     print(f"rerun: reruns go to {scratch}; the committed data stay as they are", flush=True)
-    return 0 if reproduce(chosen, scratch, args.dry_run) else 1
+    same = reproduce(chosen, scratch, args.dry_run, args.record)
+    if verified:
+        staleness.write(render.REPO)
+        print(f"rerun: {len(verified)} runs recorded as reproduced in {staleness.VERIFIED}; {staleness.RECORD} "
+              "rewritten: git add them, then /usr/bin/python3 -m reports.manifest and /usr/bin/python3 -m reports.render")
+    return 0 if same else 1
 
 
 if __name__ == "__main__":

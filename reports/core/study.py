@@ -308,14 +308,17 @@ def short_command(command):
 def runs_table(root, runs):
     """Markdown table of the study's runs from their meta.json (or benchmark context), and the
     provenance problems."""
+    from reports import staleness  # the record of which runs' sources changed (reports/staleness.py)
+    record = staleness.read_record(root)
     rows, problems = [], []
     for run in runs:
         meta, found = provenance(root, run)
         problems += found
         if meta is None:
             state = "not recorded" if run.optional and not found else "missing"
-            rows.append([f"`{run.folder}`", f"`{short_command(run.command)}`", state, "", "", ""])
+            rows.append([f"`{run.folder}`", f"`{short_command(run.command)}`", state, "", "", "", ""])
             continue
+        sources = "–" if is_bench(run) else staleness.describe(record.get(run.folder))
         commit = meta.get("git_commit", "?")
         if is_bench(run):
             clean = meta.get("source_modified") == "false"
@@ -331,6 +334,6 @@ def runs_table(root, runs):
                 wall += " (its last session: the run was resumed)"
         state = "clean" if clean else "**modified**"
         rows.append([f"`{run.folder}`", f"`{short_command(run.command)}`", size,
-                     f"`{commit[:10]}` ({state})", finished, wall])
-    table = markdown.table(["folder", "command", "size", "commit", "finished", "wall time"], rows)
+                     f"`{commit[:10]}` ({state})", finished, wall, sources])
+    table = markdown.table(["folder", "command", "size", "commit", "finished", "wall time", "sources since"], rows)
     return table, problems
