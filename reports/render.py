@@ -99,6 +99,7 @@ def commands_block(s):
         lines.append(run.command + (f"   # {run.note}" if run.note else ""))
     for step in s.steps:
         lines.append(step.command + (f"   # {step.note}" if step.note else ""))
+    lines.append("/usr/bin/python3 -m reports.staleness   # results/staleness.csv: these runs are current")
     lines.append("/usr/bin/python3 -m reports.manifest   # results/SHA256SUMS: the data's new hashes")
     lines.append("/usr/bin/python3 -m reports.render " + s.name + "   # this file, from the data")
     lines.append("```")

@@ -154,7 +154,8 @@ def in_place(chosen, args):
     for s, runs in chosen:
         steps = s.steps if (args.steps or not args.only) else []
         commands = [r.command for r in runs] + [step.command for step in steps]
-        commands += ["/usr/bin/python3 -m reports.manifest", f"/usr/bin/python3 -m reports.render {s.name}"]
+        commands += ["/usr/bin/python3 -m reports.staleness", "/usr/bin/python3 -m reports.manifest",
+                     f"/usr/bin/python3 -m reports.render {s.name}"]
         for command in commands:
             if not shell(command, args.dry_run):
                 print(f"rerun: failed: {command}", file=sys.stderr)
