@@ -12,6 +12,8 @@ import os
 import subprocess
 import sys
 
+from reports.core import data
+
 MANIFEST = "results/SHA256SUMS"
 NOT_LISTED = ("REPORT.md", "README.md")  # rendered from the data (compared by --check itself), and prose
 
@@ -82,14 +84,9 @@ def write(root):
     files = committed_files(root)
     if files is None:
         raise ValueError(f"{root}: not a git work tree (the manifest lists the files git tracks under results/)")
-    full = os.path.join(root, MANIFEST)
-    tmp = full + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as f:
-        for path in files:
-            if os.path.exists(os.path.join(root, path)):
-                f.write(f"{sha256(os.path.join(root, path))}  {path}\n")
-    os.replace(tmp, full)
-    return len(files)
+    lines = [f"{sha256(os.path.join(root, p))}  {p}\n" for p in files if os.path.exists(os.path.join(root, p))]
+    data.write_text(os.path.join(root, MANIFEST), "".join(lines))
+    return len(lines)
 
 
 def main():

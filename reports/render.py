@@ -151,10 +151,7 @@ def main(argv=None):
                     status = 1
             else:
                 os.makedirs(os.path.dirname(target), exist_ok=True)
-                tmp = target + ".tmp"
-                with open(tmp, "w", encoding="utf-8") as f:
-                    f.write(text)
-                os.replace(tmp, target)
+                data.write_text(target, text)
                 print(target if not problems else f"{target} ({len(problems)} problems above)")
         if args.check and problems:
             status = 1

@@ -256,25 +256,17 @@ def record_verified(root, folder, date):
     meta = data.read_meta(root, folder)
     sources = current_sources(root, Sources(root), meta)
     head = git(root, "rev-parse", "HEAD")
-    path = os.path.join(root, VERIFIED)
-    new = not os.path.exists(path)
-    with open(path, "a", encoding="utf-8") as f:
-        if new:
-            f.write(",".join(VERIFIED_HEADER) + "\n")
-        f.write(f"{folder},{fingerprint(sources)},{head.stdout.strip() if head else ''},{date}\n")
+    rows = [[r[c] for c in VERIFIED_HEADER] for r in data.read_rows(root, VERIFIED)] \
+        if os.path.exists(os.path.join(root, VERIFIED)) else []
+    rows.append([folder, fingerprint(sources), head.stdout.strip() if head else "", date])
+    data.write_csv(os.path.join(root, VERIFIED), VERIFIED_HEADER, rows)
 
 
 def write(root):
     rows = record_rows(root)
     if rows is None:
         raise ValueError(f"{root}: not a git work tree with its whole history")
-    path = os.path.join(root, RECORD)
-    tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as f:
-        f.write(",".join(RECORD_HEADER) + "\n")
-        for r in rows:
-            f.write(",".join(r) + "\n")
-    os.replace(tmp, path)
+    data.write_csv(os.path.join(root, RECORD), RECORD_HEADER, rows)
     return rows
 
 

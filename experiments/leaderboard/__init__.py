@@ -84,14 +84,6 @@ def fmt(value):
     return "" if value is None or not math.isfinite(value) else f"{value:.6g}"
 
 
-def write_csv(target, header, rows):
-    tmp = target + ".tmp"
-    with open(tmp, "w", newline="", encoding="utf-8") as f:
-        w = csv.writer(f, lineterminator="\n")
-        w.writerow(header)
-        w.writerows(rows)
-    os.replace(tmp, target)
-
 
 def panel_rows(source, panel_of, references):
     """panels.csv rows of one trials.csv, streamed: (panel, algorithm) in order of appearance;
@@ -166,8 +158,8 @@ def digest(root):
         if not os.path.exists(source):
             continue
         references = data.read_meta(root, folder)["references"]
-        write_csv(data.path(root, folder, PANELS), PANELS_HEADER, panel_rows(source, PANEL_OF[folder], references))
-        write_csv(data.path(root, folder, PAIRED), PAIRED_HEADER,
+        data.write_csv(data.path(root, folder, PANELS), PANELS_HEADER, panel_rows(source, PANEL_OF[folder], references))
+        data.write_csv(data.path(root, folder, PAIRED), PAIRED_HEADER,
                   paired_rows(root, folder, PANEL_OF[folder], X_OF[folder], dabench))
         written += [data.path(root, folder, PANELS), data.path(root, folder, PAIRED)]
     if not written:

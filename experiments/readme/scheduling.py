@@ -9,7 +9,6 @@ the build) recomputes them with the build's program and fails when the digest di
 
 import csv
 import io
-import os
 import subprocess
 from pathlib import Path
 
@@ -70,15 +69,8 @@ def build_program(root):
 
 def digest(root):
     """Write SCHEDULE_DIGEST from the build's `dabench schedule`; returns [the file]."""
-    path = data.path(root, SCHEDULE_DIGEST)
     rows = schedule_rows(root, build_program(root))
-    tmp = path + ".tmp"
-    with open(tmp, "w", newline="", encoding="utf-8") as f:
-        writer = csv.writer(f, lineterminator="\n")
-        writer.writerow(DIGEST_HEADER)
-        writer.writerows(rows)
-    os.replace(tmp, path)
-    return [path]
+    return [data.write_csv(data.path(root, SCHEDULE_DIGEST), DIGEST_HEADER, rows)]
 
 
 def predictions(root, folder, trials=None):

@@ -36,14 +36,6 @@ DIGESTS = [
 BELIEF_DIGESTS = [(TOY, True), (CALIBRATION, False)]
 
 
-def write_csv(path, header, rows):
-    with open(path + ".tmp", "w", newline="", encoding="utf-8") as f:
-        w = csv.writer(f, lineterminator="\n")
-        w.writerow(header)
-        w.writerows(rows)
-    os.replace(path + ".tmp", path)
-    return path
-
 
 def read_steps(root, folder):
     """steps.csv of a run as {(point, algorithm): {metric: array [trials x K]}, 'trials': [...]},
@@ -189,9 +181,9 @@ def digest(root):
                   file=sys.stderr)
             continue
         tables = tables_of(folder)
-        written.append(write_csv(os.path.join(base, "runs.csv"), RUNS_HEADER, runs_rows(tables)))
+        written.append(data.write_csv(os.path.join(base, "runs.csv"), RUNS_HEADER, runs_rows(tables)))
         if what.get("steps"):
-            written.append(write_csv(os.path.join(base, "steps-mean.csv"), STEPS_HEADER, steps_rows(tables)))
+            written.append(data.write_csv(os.path.join(base, "steps-mean.csv"), STEPS_HEADER, steps_rows(tables)))
         for name, first in (("steps-paired.csv", None), (f"steps-paired-{MATCHED_RUNS}.csv", what.get("first"))):
             if name != "steps-paired.csv" and first is None:
                 continue
@@ -201,8 +193,8 @@ def digest(root):
                 partner, trackers = what["partner"]
                 rows += pairs_with_partner(own, first_trials(tables_of(partner), first), trackers)
             if rows:
-                written.append(write_csv(os.path.join(base, name), PAIRS_HEADER, rows))
+                written.append(data.write_csv(os.path.join(base, name), PAIRS_HEADER, rows))
     for folder, modes in BELIEF_DIGESTS:
-        written.append(write_csv(data.path(root, folder, "beliefs-summary.csv"), tbd_toy.BELIEFS_HEADER,
+        written.append(data.write_csv(data.path(root, folder, "beliefs-summary.csv"), tbd_toy.BELIEFS_HEADER,
                                  tbd_toy.belief_rows(root, folder, modes)))
     return written

@@ -1,4 +1,5 @@
-"""Reading the committed data: CSV files as dict rows or typed columns, and each run's meta.json.
+"""Reading the committed data: CSV files as dict rows or typed columns, and each run's meta.json;
+and writing what the studies derive from it (digests, records) whole or not at all.
 
 Paths are relative to the repository root passed in (so a check can run on a copy of the data).
 Numbers are parsed with float(); an empty field is None."""
@@ -80,3 +81,23 @@ def read_meta(root, folder):
         raise DataError(f"{folder}/meta.json: {error.strerror}") from None
     except json.JSONDecodeError as error:
         raise DataError(f"{folder}/meta.json: not JSON ({error.msg}, line {error.lineno})") from None
+
+
+def write_text(path, text):
+    """path holds text, or (on a failure) what it held before: written beside it, then renamed."""
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write(text)
+    os.replace(tmp, path)
+    return path
+
+
+def write_csv(path, header, rows):
+    """A CSV of header and rows, written as write_text writes; returns the path."""
+    tmp = path + ".tmp"
+    with open(tmp, "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(header)
+        w.writerows(rows)
+    os.replace(tmp, path)
+    return path
