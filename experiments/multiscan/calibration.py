@@ -44,6 +44,10 @@ def calibration_section(report, root):
     claim_likelihood_calibrated(report, likelihood.get(most, []), particles_text(most))
     report.value("calibration.most", particles_text(most))
     report.value("calibration.fewest", particles_text(fewest))
+    # The smallest count from which up every count passes the KS check at every scan count.
+    passing = [n for n in sorted(by_particles) if all(d <= c for _, d, c, _, _ in by_particles[n])]
+    from_up = next((n for n in passing if all(m in passing for m in by_particles if m >= n)), None)
+    report.value("calibration.passing_from", particles_text(from_up) if from_up else "no count")
 
     parts, ours = [], []
     for n_scans, d, critical, p80, se in by_particles[most]:
