@@ -165,7 +165,8 @@ def iteration_values(report, root, rep, other):
     """BP's iteration maximum per run from the trials digests (claim 8's numbers)."""
     scans = {e: s for e, s in rep.trials.items() if math.isfinite(s.max_iter)}
     report.value("iter_max_exp1", f"{scans[1].max_iter:g} over {scans[1].bp_rows} BP runs ({scans[1].max_where})"
-                 if 1 in scans else "not run (no trials digest)")
+                 if 1 in scans else "unknown (its trials.csv was not kept and has no digest; its summaries give "
+                 "only per-point p95s, a lower bound)")
     report.value("iter_max_large", ", ".join(f"experiment {e} {s.max_iter:g}" for e, s in sorted(scans.items())
                                              if e != 1) or "not run (no trials digests)")
     if os.path.exists(data.path(root, BP_VS_EXACT, DIGEST)):

@@ -105,10 +105,21 @@ def evaluate_rules(rep):
 
 
 def rule_verdict(result, share):
-    """from_resamples on a rule's outcome; a rule the data cannot evaluate is "not run"."""
+    """from_resamples on a rule's outcome; a rule whose data only bound the answer (INCONCLUSIVE:
+    rule 8 while an experiment's maximum is known only as a lower bound) is "agrees within error"
+    (the data neither confirm nor contradict it); a rule the data cannot evaluate is "not run"."""
+    if result.verdict == bpr.INCONCLUSIVE:
+        return verdicts.WITHIN_ERROR
     if result.verdict not in (bpr.AGREES, bpr.DIFFERS):
         return verdicts.NOT_RUN
     return verdicts.from_resamples(result.verdict == bpr.AGREES, share)
+
+
+def outcome_text(result, share):
+    """How the verdict was reached, after the rule: the resample share, or why there is none."""
+    if result.verdict == bpr.INCONCLUSIVE:
+        return "the data bound the answer without deciding it"
+    return share_text(share) if rule_verdict(result, share) != verdicts.NOT_RUN else "not run"
 
 
 def share_text(share):
@@ -116,13 +127,13 @@ def share_text(share):
 
 
 def section_vb_claims(report, rep):
-    """The 29 rules of Sec. V-B as claims (rule functions in plots/bp_paper_report.py); returns
+    """The 29 rules of Sec. V-B as claims (rule functions in rules.py and rules_*.py); returns
     their evaluations for the details list."""
     evaluated = evaluate_rules(rep)
     for cid, text, rule, res, share in evaluated:
         verdict = rule_verdict(res, share)
         report.claim(Claim(cid, text, PAPER[cid][1], PAPER[cid][0], res.measured, verdict,
-                           f"{rule}; {share_text(share)}" if verdict != verdicts.NOT_RUN else f"{rule}; not run"))
+                           f"{rule}; {outcome_text(res, share)}"))
     return evaluated
 
 
@@ -130,7 +141,6 @@ def rules_and_details(evaluated):
     """Each rule with its resample share, and the per-panel numbers behind it."""
     lines = []
     for cid, text, rule, res, share in evaluated:
-        done = share_text(share) if rule_verdict(res, share) != verdicts.NOT_RUN else "not run"
-        lines.append(f"- **{cid}** {text}. *Rule:* {rule}; {done}.")
+        lines.append(f"- **{cid}** {text}. *Rule:* {rule}; {outcome_text(res, share)}.")
         lines += [f"  - {d}" for d in res.details]
     return "\n".join(lines)
