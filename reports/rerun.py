@@ -110,12 +110,10 @@ def shell(command, dry_run):
     return dry_run or subprocess.run(command, shell=True, cwd=render.REPO).returncode == 0
 
 
-verified = []  # the folders reproduce() found identical, from a clean commit
-
-
 def reproduce(chosen, scratch, dry_run, record):
-    """Each run into scratch, then compared with the committed folder; True if all identical."""
-    same = True
+    """Each run into scratch, then compared with the committed folder: (all identical, the folders
+    recorded as reproduced)."""
+    same, verified = True, []
     for s, runs in chosen:
         for r in runs:
             if study_core.is_bench(r):
@@ -123,7 +121,7 @@ def reproduce(chosen, scratch, dry_run, record):
                 continue
             if not shell(scratch_command(r, scratch), dry_run):
                 print(f"rerun: failed: {r.folder}", file=sys.stderr)
-                return False
+                return False, verified
             if dry_run:
                 continue
             done = subprocess.run([sys.executable, os.path.join(render.REPO, "scripts", "same_results.py"), "--shared",
@@ -136,7 +134,7 @@ def reproduce(chosen, scratch, dry_run, record):
                 same = False
             elif record and record_verified(r.folder, os.path.join(scratch, r.folder)):
                 verified.append(r.folder)
-    return same
+    return same, verified
 
 
 def record_verified(folder, rerun_folder):
@@ -188,7 +186,7 @@ def main(argv=None):
         return 0 if in_place(chosen, args) else 1
     scratch = args.scratch or ("SCRATCH" if args.dry_run else tempfile.mkdtemp(prefix="dabench-rerun-"))
     print(f"rerun: reruns go to {scratch}; the committed data stay as they are", flush=True)
-    same = reproduce(chosen, scratch, args.dry_run, args.record)
+    same, verified = reproduce(chosen, scratch, args.dry_run, args.record)
     if verified:
         staleness.write(render.REPO)
         print(f"rerun: {len(verified)} runs recorded as reproduced in {staleness.VERIFIED}; {staleness.RECORD} "

@@ -23,27 +23,14 @@ import subprocess
 import sys
 
 from reports.core import data
+from reports.core.study import git, history_at_hand
 
 RECORD = "results/staleness.csv"
 RECORD_HEADER = ["folder", "state", "changed", "examples", "since"]
 VERIFIED = "results/verified.csv"  # written by reports.rerun: runs reproduced identically
 VERIFIED_HEADER = ["folder", "sources", "commit", "date"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
-KIND_OF_FOLDER = {"single_scan": "single_scan", "multi_scan": "multi_scan", "tracking": "tracking", "tbd": "tbd"}
 ALWAYS = ["harness/core/summary.cpp", "harness/run/trial_draw.hpp"]
-
-
-def git(root, *args):
-    try:
-        return subprocess.run(["git", "-C", root, *args], capture_output=True, text=True, check=False)
-    except OSError:
-        return None
-
-
-def history_at_hand(root):
-    """True where root is a git work tree with its whole history (not a shallow clone)."""
-    done = git(root, "rev-parse", "--is-shallow-repository")
-    return done is not None and done.returncode == 0 and done.stdout.strip() == "false"
 
 
 COMMENT = re.compile(r"//[^\n]*|/\*.*?\*/", re.S)
@@ -132,7 +119,7 @@ class Sources:
                 continue
             start.append(path)
             if path.startswith("scenarios/"):
-                kind = KIND_OF_FOLDER.get(path.split("/")[1])
+                kind = path.split("/")[1]  # scenarios/<kind>/
         unknown = [n for n in names if n and n not in self.defined_in]
         if kind:
             start += [f"harness/run/kinds/{kind}.cpp", f"harness/run/kinds/{kind}_execution.cpp"]
@@ -161,8 +148,8 @@ def fingerprint(blobs):
 def run_folders():
     """The committed run folders of every study (benchmarks aside), in the studies' order."""
     from reports import render  # the studies, imported only when the record is computed
-    from reports.core import study as study_core
-    return [r.folder for s in render.studies() for r in s.runs if not study_core.is_bench(r)]
+    from reports.core.study import is_bench
+    return [r.folder for s in render.studies() for r in s.runs if not is_bench(r)]
 
 
 def verified_sources(root):

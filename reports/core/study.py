@@ -231,7 +231,7 @@ def provenance(root, run):
     return meta, problems
 
 
-_SHALLOW = {}
+_HISTORY = {}  # root -> whether its whole git history is at hand
 
 
 def git(root, *args):
@@ -242,15 +242,20 @@ def git(root, *args):
         return None
 
 
+def history_at_hand(root):
+    """True where root is a git work tree with its whole history (not a shallow clone)."""
+    if root not in _HISTORY:
+        done = git(root, "rev-parse", "--is-shallow-repository")
+        _HISTORY[root] = done is not None and done.returncode == 0 and done.stdout.strip() == "false"
+    return _HISTORY[root]
+
+
 def commit_problems(root, folder, commit):
     """Why a run's recorded commit cannot be traced in the repository under root: it is not there,
     or HEAD does not descend from it. Nothing where root is not a git work tree (a copy of the
     data) or is a shallow clone (its history is cut: a missing commit proves nothing)."""
     commit = commit.removesuffix("-dirty")
-    if root not in _SHALLOW:
-        done = git(root, "rev-parse", "--is-shallow-repository")
-        _SHALLOW[root] = None if done is None or done.returncode != 0 else done.stdout.strip() == "true"
-    if _SHALLOW[root] is not False:
+    if not history_at_hand(root):
         return []
     exists = git(root, "cat-file", "-e", f"{commit}^{{commit}}")
     if not re.fullmatch(r"[0-9a-f]{40}", commit) or exists.returncode != 0:
